@@ -1,0 +1,148 @@
+//! Sums, differences, scaling and products.
+
+use super::{Bernstein, BernsteinError};
+use crate::number::{Number, Rational};
+use rug::Integer;
+
+impl<N: Number> Bernstein<N> {
+    fn common_degrees(&self, other: &Self) -> Result<Vec<usize>, BernsteinError> {
+        if self.nvars != other.nvars {
+            return Err(BernsteinError::Mismatch(self.nvars, other.nvars));
+        }
+        Ok((0..self.nvars)
+            .map(|a| self.degrees[a].max(other.degrees[a]))
+            .collect())
+    }
+
+    fn zip_with(&self, other: &Self, f: impl Fn(&N, &N) -> N) -> Result<Self, BernsteinError> {
+        let d = self.common_degrees(other)?;
+        let (a, b) = (self.elevate_to(&d), other.elevate_to(&d));
+        let coeffs = a.coeffs.iter().zip(&b.coeffs).map(|(x, y)| f(x, y)).collect();
+        Ok(Bernstein { coeffs, ..a })
+    }
+
+    /// `self + other`, both elevated to their common degrees.
+    ///
+    /// # Errors
+    /// [`BernsteinError::Mismatch`] if the variable counts differ.
+    pub fn try_add(&self, other: &Self) -> Result<Self, BernsteinError> {
+        self.zip_with(other, |x, y| x.add(y))
+    }
+
+    /// `self - other`, both elevated to their common degrees.
+    ///
+    /// # Errors
+    /// [`BernsteinError::Mismatch`] if the variable counts differ.
+    pub fn try_sub(&self, other: &Self) -> Result<Self, BernsteinError> {
+        self.zip_with(other, |x, y| x.sub(y))
+    }
+
+    /// `-self`.
+    pub fn neg(&self) -> Self {
+        self.map(|c| c.neg())
+    }
+
+    /// `c · self`.
+    pub fn scale(&self, c: &N) -> Self {
+        self.map(|x| x.mul(c))
+    }
+
+    /// The product, of degrees `d_a + e_a`:
+    /// `c_K = Σ_{I+J=K} Π_a C(d_a,I_a) C(e_a,J_a) / C(d_a+e_a,K_a) · a_I b_J`.
+    ///
+    /// The binomials are exact integers and their quotients exact rationals converted to `N`,
+    /// so the product is exact for exact types and an enclosure for enclosure types.
+    ///
+    /// # Errors
+    /// [`BernsteinError::Mismatch`] if the variable counts differ.
+    pub fn try_mul(&self, other: &Self) -> Result<Self, BernsteinError> {
+        if self.nvars != other.nvars {
+            return Err(BernsteinError::Mismatch(self.nvars, other.nvars));
+        }
+        let k = self.nvars;
+        let prec = self.coeffs[0].precision();
+        let degrees: Vec<usize> = (0..k).map(|a| self.degrees[a] + other.degrees[a]).collect();
+        // Scale each side by its binomials (exact integers).
+        let scaled = |p: &Self| -> Vec<N> {
+            p.coeffs
+                .iter()
+                .enumerate()
+                .map(|(flat, c)| {
+                    let idx = p.multi_index(flat);
+                    let mut w = Integer::from(1);
+                    for a in 0..k {
+                        w *= Integer::from(Integer::binomial_u(p.degrees[a] as u32, idx[a] as u32));
+                    }
+                    c.mul(&N::from_rational(&Rational::from(w), prec))
+                })
+                .collect()
+        };
+        let (sa, sb) = (scaled(self), scaled(other));
+        let mut out: Vec<Option<N>> = vec![None; degrees.iter().map(|d| d + 1).product()];
+        let out_strides: Vec<usize> = (0..k)
+            .map(|a| degrees[a + 1..].iter().map(|d| d + 1).product())
+            .collect();
+        for (fa, x) in sa.iter().enumerate() {
+            let ia = self.multi_index(fa);
+            for (fb, y) in sb.iter().enumerate() {
+                let ib = other.multi_index(fb);
+                let flat: usize = (0..k).map(|a| (ia[a] + ib[a]) * out_strides[a]).sum();
+                let term = x.mul(y);
+                match &mut out[flat] {
+                    Some(acc) => acc.add_assign(&term),
+                    slot @ None => *slot = Some(term),
+                }
+            }
+        }
+        let template = Bernstein {
+            nvars: k,
+            degrees: {
+                let mut d = [0; super::MAX_VARS];
+                d[..k].copy_from_slice(&degrees);
+                d
+            },
+            coeffs: Vec::<N>::new(),
+        };
+        let coeffs = out
+            .into_iter()
+            .enumerate()
+            .map(|(flat, c)| {
+                let idx = template.multi_index(flat);
+                let mut w = Integer::from(1);
+                for a in 0..k {
+                    w *= Integer::from(Integer::binomial_u(degrees[a] as u32, idx[a] as u32));
+                }
+                let inv = N::from_rational(&Rational::from((Integer::from(1), w)), prec);
+                c.expect("every output index is reached").mul(&inv)
+            })
+            .collect();
+        Ok(Bernstein { coeffs, ..template })
+    }
+}
+
+impl<N: Number> std::ops::Add for &Bernstein<N> {
+    type Output = Bernstein<N>;
+    /// # Panics
+    /// If the variable counts differ (use [`Bernstein::try_add`] to get an error instead).
+    fn add(self, rhs: Self) -> Bernstein<N> {
+        self.try_add(rhs).expect("same number of variables")
+    }
+}
+
+impl<N: Number> std::ops::Sub for &Bernstein<N> {
+    type Output = Bernstein<N>;
+    /// # Panics
+    /// If the variable counts differ (use [`Bernstein::try_sub`] to get an error instead).
+    fn sub(self, rhs: Self) -> Bernstein<N> {
+        self.try_sub(rhs).expect("same number of variables")
+    }
+}
+
+impl<N: Number> std::ops::Mul for &Bernstein<N> {
+    type Output = Bernstein<N>;
+    /// # Panics
+    /// If the variable counts differ (use [`Bernstein::try_mul`] to get an error instead).
+    fn mul(self, rhs: Self) -> Bernstein<N> {
+        self.try_mul(rhs).expect("same number of variables")
+    }
+}

@@ -1,0 +1,40 @@
+//! Range bounds from the coefficients (the convex-hull property).
+
+use super::Bernstein;
+use crate::number::{Number, Sign};
+
+impl<N: Number> Bernstein<N> {
+    /// Bounds `[lo, hi]` in `f64`, outward rounded, on the values of the polynomial over the
+    /// unit box: the least lower bound and the greatest upper bound of the coefficients.
+    ///
+    /// The Bernstein basis is a partition of unity of nonnegative functions on the box, so
+    /// every value is a convex combination of the coefficients (`proofs/coefficient-range.md`).
+    /// Valid for enclosure and exact types; for approximate types only an estimate.
+    pub fn range_f64(&self) -> (f64, f64) {
+        let lo = self
+            .coeffs
+            .iter()
+            .map(|c| c.lower_f64())
+            .fold(f64::INFINITY, f64::min);
+        let hi = self
+            .coeffs
+            .iter()
+            .map(|c| c.upper_f64())
+            .fold(f64::NEG_INFINITY, f64::max);
+        (lo, hi)
+    }
+
+    /// The sign of the polynomial on the whole unit box, as far as the coefficients prove it:
+    /// `Positive` (`Negative`) if every coefficient is certainly positive (negative), so the
+    /// polynomial is on the whole closed box; `Zero` if every coefficient is exactly zero (the
+    /// zero polynomial); `Unknown` otherwise. A proof for enclosure and exact types
+    /// (`proofs/coefficient-range.md`).
+    pub fn range_sign(&self) -> Sign {
+        Sign::common(self.coeffs.iter().map(|c| c.sign()))
+    }
+
+    /// Whether every coefficient is certainly zero: the polynomial is identically zero.
+    pub fn is_zero(&self) -> bool {
+        self.coeffs.iter().all(|c| c.sign().is_zero())
+    }
+}

@@ -1,0 +1,360 @@
+//! NURBS surfaces and their exact split into rational Bézier patches.
+
+use super::{Point3, RationalPatch};
+use crate::number::Rational;
+
+/// Why a NURBS surface is malformed.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum NurbsError {
+    /// Knot count is not points + degree + 1.
+    #[error("{dir}: {points} control points of degree {degree} need {expected} knots, got {got}")]
+    KnotCount {
+        /// "u" or "v".
+        dir: &'static str,
+        /// Control points in that direction.
+        points: usize,
+        /// Degree in that direction.
+        degree: usize,
+        /// points + degree + 1.
+        expected: usize,
+        /// The number given.
+        got: usize,
+    },
+    /// Knots decrease somewhere.
+    #[error("{dir}: knot {index} ({value}) is less than the one before it")]
+    Decreasing {
+        /// "u" or "v".
+        dir: &'static str,
+        /// Position.
+        index: usize,
+        /// Its value.
+        value: String,
+    },
+    /// Fewer control points than degree + 1, or degree 0 with no span.
+    #[error("{dir}: degree {degree} needs at least {} control points, got {points}", degree + 1)]
+    TooFewPoints {
+        /// "u" or "v".
+        dir: &'static str,
+        /// Degree.
+        degree: usize,
+        /// Points.
+        points: usize,
+    },
+    /// The parameter domain [t_p, t_{n+1}] is empty.
+    #[error("{dir}: the parameter domain is empty (all knots of the domain coincide)")]
+    EmptyDomain {
+        /// "u" or "v".
+        dir: &'static str,
+    },
+    /// Control point count is not count_u × count_v, or weights mismatch.
+    #[error("{expected} control points expected, got {got} (or as many weights)")]
+    PointCount {
+        /// count_u × count_v.
+        expected: usize,
+        /// The number given.
+        got: usize,
+    },
+    /// A weight is not positive.
+    #[error("weight {index} is {value}, weights must be positive")]
+    NonPositiveWeight {
+        /// Position.
+        index: usize,
+        /// Value.
+        value: String,
+    },
+    /// Degree above the supported maximum.
+    #[error("degree {0} is above the supported maximum {max}", max = super::patch::MAX_PATCH_DEGREE)]
+    DegreeTooHigh(usize),
+}
+
+/// A rational B-spline (NURBS) surface. Control point (i, j) is entry `i * count_v + j`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NurbsSurface {
+    degree: [usize; 2],
+    knots: [Vec<Rational>; 2],
+    counts: [usize; 2],
+    points: Vec<Point3>,
+    weights: Vec<Rational>,
+}
+
+/// A homogeneous control point `[wx, wy, wz, w]`.
+type Hom = [Rational; 4];
+
+fn check_knots(dir: &'static str, degree: usize, points: usize, knots: &[Rational]) -> Result<(), NurbsError> {
+    if degree > super::patch::MAX_PATCH_DEGREE {
+        return Err(NurbsError::DegreeTooHigh(degree));
+    }
+    if points < degree + 1 {
+        return Err(NurbsError::TooFewPoints { dir, degree, points });
+    }
+    let expected = points + degree + 1;
+    if knots.len() != expected {
+        return Err(NurbsError::KnotCount { dir, points, degree, expected, got: knots.len() });
+    }
+    if let Some(index) = (1..knots.len()).find(|&i| knots[i] < knots[i - 1]) {
+        return Err(NurbsError::Decreasing { dir, index, value: knots[index].to_string() });
+    }
+    if knots[degree] >= knots[points] {
+        return Err(NurbsError::EmptyDomain { dir });
+    }
+    Ok(())
+}
+
+/// Inserts `u` once into a curve with homogeneous points (Boehm's algorithm, exact).
+/// `knots` has `points.len() + p + 1` entries; `u` must lie in the domain [t_p, t_n].
+fn insert_knot(p: usize, knots: &mut Vec<Rational>, points: &mut Vec<Hom>, u: &Rational) {
+    // The span k with t_k <= u < t_{k+1}, k in [p, n-1]; at the domain end use the last span.
+    let n = points.len();
+    let mut k = p;
+    while k + 1 < n && knots[k + 1] <= *u {
+        k += 1;
+    }
+    let mut new_points = Vec::with_capacity(n + 1);
+    for i in 0..=n {
+        if i + p <= k {
+            new_points.push(points[i].clone());
+        } else if i > k {
+            new_points.push(points[i - 1].clone());
+        } else {
+            // alpha_i = (u - t_i) / (t_{i+p} - t_i), for k - p + 1 <= i <= k.
+            let den = Rational::from(&knots[i + p] - &knots[i]);
+            let alpha = Rational::from(u - &knots[i]) / den;
+            let beta = Rational::from(1 - &alpha);
+            let q: Hom = std::array::from_fn(|c| Rational::from(&alpha * &points[i][c]) + Rational::from(&beta * &points[i - 1][c]));
+            new_points.push(q);
+        }
+    }
+    knots.insert(k + 1, u.clone());
+    *points = new_points;
+}
+
+/// Splits a curve into Bézier segments: for each span [a, b] of the domain with a < b, the
+/// p + 1 homogeneous Bézier points. Every domain knot is raised to multiplicity at least p
+/// by exact insertion; then the segment on [t_k, t_{k+1}] has control points P_{k-p..=k}
+/// (the blossom argument in `proofs/knot-insertion.md`).
+fn bezier_segments(p: usize, knots: &[Rational], points: &[Hom]) -> Vec<Vec<Hom>> {
+    let mut knots = knots.to_vec();
+    let mut points = points.to_vec();
+    let n = points.len();
+    let (start, end) = (knots[p].clone(), knots[n].clone());
+    let mut values: Vec<Rational> = knots[p..=n].to_vec();
+    values.dedup();
+    for u in &values {
+        let mult = knots.iter().filter(|t| *t == u).count();
+        for _ in mult..p {
+            insert_knot(p, &mut knots, &mut points, u);
+        }
+    }
+    let mut segments = Vec::new();
+    for k in p..points.len() {
+        if knots[k] < knots[k + 1] && knots[k] >= start && knots[k + 1] <= end {
+            segments.push(points[k - p..=k].to_vec());
+        }
+    }
+    segments
+}
+
+impl NurbsSurface {
+    /// A NURBS surface from degrees, knot vectors, control points (`i * count_v + j`, i along
+    /// u) and positive weights.
+    ///
+    /// # Errors
+    /// [`NurbsError`] on wrong counts, decreasing knots, an empty domain or a weight that is
+    /// not positive.
+    pub fn new(
+        degree: [usize; 2],
+        knots_u: Vec<Rational>,
+        knots_v: Vec<Rational>,
+        counts: [usize; 2],
+        points: Vec<Point3>,
+        weights: Vec<Rational>,
+    ) -> Result<Self, NurbsError> {
+        check_knots("u", degree[0], counts[0], &knots_u)?;
+        check_knots("v", degree[1], counts[1], &knots_v)?;
+        let expected = counts[0] * counts[1];
+        if points.len() != expected || weights.len() != expected {
+            return Err(NurbsError::PointCount { expected, got: points.len().min(weights.len()) });
+        }
+        if let Some((index, w)) = weights.iter().enumerate().find(|(_, w)| w.cmp0() != std::cmp::Ordering::Greater) {
+            return Err(NurbsError::NonPositiveWeight { index, value: w.to_string() });
+        }
+        Ok(NurbsSurface { degree, knots: [knots_u, knots_v], counts, points, weights })
+    }
+
+    /// The degree (p, q).
+    pub fn degree(&self) -> [usize; 2] {
+        self.degree
+    }
+
+    /// The number of control points along u and v.
+    pub fn counts(&self) -> [usize; 2] {
+        self.counts
+    }
+
+    /// The knot vectors (u, v).
+    pub fn knots(&self) -> [&[Rational]; 2] {
+        [&self.knots[0], &self.knots[1]]
+    }
+
+    /// The parameter domain `[[u0, u1], [v0, v1]]`.
+    pub fn domain(&self) -> [[Rational; 2]; 2] {
+        [0, 1].map(|d| {
+            let (p, n) = (self.degree[d], self.counts[d]);
+            [self.knots[d][p].clone(), self.knots[d][n].clone()]
+        })
+    }
+
+    fn hom(&self, i: usize, j: usize) -> Hom {
+        let k = i * self.counts[1] + j;
+        let w = &self.weights[k];
+        let p = &self.points[k];
+        [Rational::from(&p[0] * w), Rational::from(&p[1] * w), Rational::from(&p[2] * w), w.clone()]
+    }
+
+    /// The rational Bézier patches of this surface, one per nonempty knot span pair, row by
+    /// row along u: exact, so each piece is the surface on its span reparameterised to
+    /// [0,1]^2 (`proofs/knot-insertion.md`). Returns the patches with their span indices.
+    pub fn to_bezier(&self) -> Vec<((usize, usize), RationalPatch)> {
+        let [p, q] = self.degree;
+        let [nu, nv] = self.counts;
+        // Split along v: each row i (fixed u index) is a curve in v.
+        let rows: Vec<Vec<Vec<Hom>>> = (0..nu)
+            .map(|i| bezier_segments(q, &self.knots[1], &(0..nv).map(|j| self.hom(i, j)).collect::<Vec<_>>()))
+            .collect();
+        let segs_v = rows.first().map_or(0, |r| r.len());
+        let mut patches = Vec::new();
+        // Then along u, for each v segment and each of its q + 1 columns.
+        let mut columns: Vec<Vec<Vec<Vec<Hom>>>> = Vec::with_capacity(segs_v);
+        for sv in 0..segs_v {
+            let cols: Vec<Vec<Vec<Hom>>> = (0..=q)
+                .map(|jj| {
+                    let curve: Vec<Hom> = (0..nu).map(|i| rows[i][sv][jj].clone()).collect();
+                    bezier_segments(p, &self.knots[0], &curve)
+                })
+                .collect();
+            columns.push(cols);
+        }
+        let segs_u = columns.first().and_then(|c| c.first()).map_or(0, |c| c.len());
+        for su in 0..segs_u {
+            for (sv, cols) in columns.iter().enumerate() {
+                let mut pts = Vec::with_capacity((p + 1) * (q + 1));
+                let mut ws = Vec::with_capacity((p + 1) * (q + 1));
+                for ii in 0..=p {
+                    for col in cols.iter() {
+                        let h = &col[su][ii];
+                        let w = h[3].clone();
+                        pts.push([0, 1, 2].map(|c| Rational::from(&h[c] / &w)));
+                        ws.push(w);
+                    }
+                }
+                let patch = RationalPatch::new([p, q], pts, ws).expect("knot insertion keeps weights positive");
+                patches.push(((su, sv), patch));
+            }
+        }
+        patches
+    }
+
+    /// The point S(u, v) by de Boor's algorithm in exact arithmetic (for tests and checks).
+    ///
+    /// # Panics
+    /// If (u, v) is outside the parameter domain.
+    pub fn eval(&self, u: &Rational, v: &Rational) -> Point3 {
+        let [p, q] = self.degree;
+        let [nu, nv] = self.counts;
+        let dom = self.domain();
+        assert!(*u >= dom[0][0] && *u <= dom[0][1] && *v >= dom[1][0] && *v <= dom[1][1]);
+        let rows: Vec<Hom> = (0..nu)
+            .map(|i| de_boor(q, &self.knots[1], &(0..nv).map(|j| self.hom(i, j)).collect::<Vec<_>>(), v))
+            .collect();
+        let h = de_boor(p, &self.knots[0], &rows, u);
+        [0, 1, 2].map(|c| Rational::from(&h[c] / &h[3]))
+    }
+}
+
+/// de Boor's algorithm on homogeneous points (exact).
+fn de_boor(p: usize, knots: &[Rational], points: &[Hom], u: &Rational) -> Hom {
+    let n = points.len();
+    let mut k = p;
+    while k + 1 < n && knots[k + 1] <= *u {
+        k += 1;
+    }
+    let mut d: Vec<Hom> = (0..=p).map(|j| points[j + k - p].clone()).collect();
+    for r in 1..=p {
+        for j in (r..=p).rev() {
+            let i = j + k - p;
+            let alpha = Rational::from(u - &knots[i]) / Rational::from(&knots[i + p + 1 - r] - &knots[i]);
+            let beta = Rational::from(1 - &alpha);
+            d[j] = std::array::from_fn(|c| Rational::from(&alpha * &d[j][c]) + Rational::from(&beta * &d[j - 1][c]));
+        }
+    }
+    d[p].clone()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn q(n: i64, d: i64) -> Rational {
+        Rational::from((n, d))
+    }
+
+    /// A bicubic-by-quadratic surface with interior knots, unclamped ends and varied weights:
+    /// every Bézier piece evaluates exactly to the NURBS surface.
+    #[test]
+    fn bezier_pieces_are_exact() {
+        let (p, qd) = (3, 2);
+        let (nu, nv) = (6, 5);
+        let ku: Vec<Rational> = [0, 0, 0, 0, 1, 3, 4, 4, 4, 4].iter().map(|&k| q(k, 1)).collect();
+        // Unclamped in v, with a double interior knot.
+        let kv: Vec<Rational> = [-2, -1, 0, 1, 1, 2, 3, 4].iter().map(|&k| q(k, 2)).collect();
+        let mut pts = Vec::new();
+        let mut ws = Vec::new();
+        for i in 0..nu {
+            for j in 0..nv {
+                pts.push([q(i as i64, 1), q(j as i64, 1), q(((i * 7 + j * 3) % 5) as i64, 3)]);
+                ws.push(q(1 + ((i + 2 * j) % 3) as i64, 2));
+            }
+        }
+        let s = NurbsSurface::new([p, qd], ku.clone(), kv.clone(), [nu, nv], pts, ws).unwrap();
+        let pieces = s.to_bezier();
+        let su: Vec<(Rational, Rational)> = vec![(q(0, 1), q(1, 1)), (q(1, 1), q(3, 1)), (q(3, 1), q(4, 1))];
+        // Domain [t_2, t_5] = [0, 1] with the double knot 1/2 inside.
+        let sv: Vec<(Rational, Rational)> = vec![(q(0, 1), q(1, 2)), (q(1, 2), q(1, 1))];
+        assert_eq!(pieces.len(), su.len() * sv.len());
+        for ((iu, iv), patch) in &pieces {
+            let (a, b) = &su[*iu];
+            let (c, d) = &sv[*iv];
+            for (s0, t0) in [(q(0, 1), q(0, 1)), (q(1, 3), q(2, 5)), (q(1, 1), q(1, 1)), (q(5, 7), q(1, 9))] {
+                let u = Rational::from(a + Rational::from(&s0 * Rational::from(b - a)));
+                let v = Rational::from(c + Rational::from(&t0 * Rational::from(d - c)));
+                assert_eq!(patch.eval(&s0, &t0), s.eval(&u, &v), "piece ({iu},{iv}) at ({s0},{t0})");
+            }
+        }
+    }
+
+    #[test]
+    fn malformed_surfaces_are_refused() {
+        let k = |v: &[i64]| v.iter().map(|&x| q(x, 1)).collect::<Vec<_>>();
+        let pts = vec![[q(0, 1), q(0, 1), q(0, 1)]; 4];
+        let ws = vec![q(1, 1); 4];
+        assert!(NurbsSurface::new([1, 1], k(&[0, 0, 1, 1]), k(&[0, 0, 1, 1]), [2, 2], pts.clone(), ws.clone()).is_ok());
+        assert!(matches!(
+            NurbsSurface::new([1, 1], k(&[0, 0, 1]), k(&[0, 0, 1, 1]), [2, 2], pts.clone(), ws.clone()),
+            Err(NurbsError::KnotCount { .. })
+        ));
+        assert!(matches!(
+            NurbsSurface::new([1, 1], k(&[0, 1, 0, 1]), k(&[0, 0, 1, 1]), [2, 2], pts.clone(), ws.clone()),
+            Err(NurbsError::Decreasing { .. })
+        ));
+        assert!(matches!(
+            NurbsSurface::new([1, 1], k(&[0, 1, 1, 1]), k(&[0, 0, 1, 1]), [2, 2], pts.clone(), ws.clone()),
+            Err(NurbsError::EmptyDomain { .. })
+        ));
+        let mut bad = ws.clone();
+        bad[2] = q(0, 1);
+        assert!(matches!(
+            NurbsSurface::new([1, 1], k(&[0, 0, 1, 1]), k(&[0, 0, 1, 1]), [2, 2], pts, bad),
+            Err(NurbsError::NonPositiveWeight { index: 2, .. })
+        ));
+    }
+}
