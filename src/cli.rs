@@ -1,0 +1,163 @@
+//! The `limn` command line: a thin layer over the library. Every command that computes
+//! something can print JSON (`--format json`) whose field names are documented in README.
+
+use crate::io::{read_model, read_model_bytes};
+use crate::model::{default_weld, Format, ModelInfo, WeldTolerance};
+use clap::{Parser, Subcommand, ValueEnum};
+use std::io::Write;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+/// The Newell teapot (32 bicubic patches), embedded so that `limn demo` needs no files.
+pub const EMBEDDED_TEAPOT: &str = include_str!("../fixtures/bezier/teapot.bpt");
+
+#[derive(Parser, Debug)]
+#[command(name = "limn", version, about = "Certified visibility analysis of free-form surfaces")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Patch count and degrees, bounding box, shared / boundary / collapsed edges, closedness,
+    /// Euler characteristic and genus of a model.
+    Info {
+        /// The model file (.json, .bpt, teaset, .igs/.iges, .obj).
+        model: PathBuf,
+        /// Output format.
+        #[arg(long, value_enum, default_value_t = OutputFormat::Text)]
+        format: OutputFormat,
+        /// How patch boundaries are matched: "exact", or an absolute distance. Default: exact,
+        /// except for IGES (the file's minimum resolution).
+        #[arg(long)]
+        weld: Option<String>,
+    },
+    /// Runs the main job on the embedded Newell teapot (no files needed).
+    Demo {
+        /// Output format.
+        #[arg(long, value_enum, default_value_t = OutputFormat::Text)]
+        format: OutputFormat,
+    },
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum OutputFormat {
+    Text,
+    Json,
+}
+
+/// A failure of a command: the message, and the exit code (2 for bad input or arguments).
+#[derive(Debug)]
+pub struct CliError {
+    /// One line: the file, the place and what is wrong.
+    pub message: String,
+    /// The process exit code.
+    pub code: u8,
+}
+
+impl CliError {
+    fn input(message: impl Into<String>) -> CliError {
+        CliError { message: message.into(), code: 2 }
+    }
+}
+
+fn parse_weld(s: &str) -> Result<WeldTolerance, CliError> {
+    if s.eq_ignore_ascii_case("exact") {
+        return Ok(WeldTolerance::Exact);
+    }
+    match s.parse::<f64>() {
+        Ok(t) if t.is_finite() && t > 0.0 => Ok(WeldTolerance::Absolute(t)),
+        _ => Err(CliError::input(format!("--weld: expected \"exact\" or a positive distance, found {s:?}"))),
+    }
+}
+
+/// Runs the command line `args` (including the program name), writing results to `out`.
+///
+/// # Errors
+/// [`CliError`] with exit code 2 on bad arguments or bad input files.
+pub fn run<I, T>(args: I, out: &mut dyn Write) -> Result<(), CliError>
+where
+    I: IntoIterator<Item = T>,
+    T: Into<std::ffi::OsString> + Clone,
+{
+    let cli = Cli::try_parse_from(args).map_err(|e| {
+        let code = if e.use_stderr() { 2 } else { 0 };
+        CliError { message: e.render().to_string().trim_end().to_string(), code }
+    })?;
+    let w = |r: std::io::Result<()>| r.map_err(|e| CliError { message: format!("cannot write the output: {e}"), code: 1 });
+    match cli.command {
+        Command::Info { model, format, weld } => {
+            let name = model.display().to_string();
+            let m = read_model(&model).map_err(|e| CliError::input(e.to_string()))?;
+            let weld = match weld {
+                Some(s) => parse_weld(&s)?,
+                None => default_weld(&m),
+            };
+            let info = ModelInfo::of(&name, &m, weld);
+            w(print_info(&info, format, out))
+        }
+        Command::Demo { format } => {
+            let m = read_model_bytes("embedded teapot", EMBEDDED_TEAPOT.as_bytes(), Some(Format::Bpt))
+                .map_err(|e| CliError::input(e.to_string()))?;
+            let info = ModelInfo::of("embedded teapot (Newell, 32 bicubic patches)", &m, WeldTolerance::Exact);
+            w(print_info(&info, format, out))
+        }
+    }
+}
+
+fn print_info(info: &ModelInfo, format: OutputFormat, out: &mut dyn Write) -> std::io::Result<()> {
+    if format == OutputFormat::Json {
+        let s = serde_json::to_string_pretty(info).map_err(std::io::Error::other)?;
+        return writeln!(out, "{s}");
+    }
+    writeln!(out, "model: {} ({:?})", info.file, info.format)?;
+    writeln!(out, "surfaces: {}, Bézier patches: {} ({} rational)", info.surfaces, info.patches, info.rational_patches)?;
+    if !info.degrees.is_empty() {
+        let d: Vec<String> = info.degrees.iter().map(|(k, v)| format!("{v} of degree {k}")).collect();
+        writeln!(out, "degrees: {}", d.join(", "))?;
+    }
+    if let Some(b) = &info.bounding_box {
+        writeln!(out, "bounding box: [{}, {}, {}] .. [{}, {}, {}]", b.min[0], b.min[1], b.min[2], b.max[0], b.max[1], b.max[2])?;
+    }
+    if let Some(t) = &info.topology {
+        let weld = match t.weld {
+            WeldTolerance::Exact => "exact".to_string(),
+            WeldTolerance::Absolute(x) => format!("within {x} (largest gap welded {:.3e})", t.max_weld_gap),
+        };
+        writeln!(out, "edges: {} ({} shared, {} boundary, {} non-manifold); {} collapsed patch sides; weld {}", t.edges, t.shared_edges, t.boundary_edges, t.nonmanifold_edges, t.collapsed_edges, weld)?;
+        writeln!(out, "vertices: {}, components: {}", t.vertices, t.components)?;
+        match t.genus {
+            Some(g) => writeln!(out, "closed: yes, Euler characteristic {}, genus {}", t.euler_characteristic, g)?,
+            None => writeln!(out, "closed: no (Euler characteristic of the patch complex {})", t.euler_characteristic)?,
+        }
+    }
+    for (i, m) in info.meshes.iter().enumerate() {
+        writeln!(out, "mesh {i}: {} vertices, {} edges, {} faces ({}), {} boundary edges, {} non-manifold, {} components", m.vertices, m.edges, m.faces, if m.triangles { "triangles" } else { "polygons" }, m.boundary_edges, m.nonmanifold_edges, m.components)?;
+        match m.genus {
+            Some(g) => writeln!(out, "  closed: yes, Euler characteristic {}, genus {}", m.euler_characteristic, g)?,
+            None => writeln!(out, "  closed: no (Euler characteristic {})", m.euler_characteristic)?,
+        }
+    }
+    for wn in &info.warnings {
+        writeln!(out, "warning: {wn}")?;
+    }
+    Ok(())
+}
+
+/// The entry point of the `limn` binary: runs, prints errors on stderr as one line, and
+/// returns the exit code (2 for bad input or arguments).
+pub fn main() -> ExitCode {
+    let mut stdout = std::io::stdout().lock();
+    match run(std::env::args_os(), &mut stdout) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) if e.code == 0 => {
+            let _ = writeln!(stdout, "{}", e.message);
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("limn: {}", e.message);
+            ExitCode::from(e.code)
+        }
+    }
+}

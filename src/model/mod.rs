@@ -1,0 +1,147 @@
+//! Layer 3: models (patches and meshes read from one file) and their topology.
+
+mod info;
+mod topology;
+
+pub use info::{default_weld, BoundingBox, ModelInfo};
+
+pub use topology::{MeshTopology, PatchTopology, WeldTolerance};
+
+use crate::number::Rational;
+use crate::surface::{Mesh, Point3, RationalPatch};
+
+/// Where a patch came from in its file.
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
+pub struct PatchSource {
+    /// The index of the surface in the file (patch number, or position among the surfaces).
+    pub surface: usize,
+    /// For IGES, the directory-entry sequence number of the surface entity.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub entity: Option<usize>,
+    /// For a NURBS surface split into Bézier pieces, the knot span (u, v) of this piece.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub span: Option<(usize, usize)>,
+}
+
+/// One Bézier patch of a model.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ModelPatch {
+    /// The patch.
+    pub surface: RationalPatch,
+    /// Where it came from.
+    pub source: PatchSource,
+}
+
+/// A message about the input that does not stop reading (something not yet honoured, such
+/// as a trim, or an entity type that is skipped).
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
+pub struct Warning {
+    /// Where: "entity 13 (DE 25)", "patch 4", "line 12".
+    pub place: String,
+    /// What.
+    pub message: String,
+}
+
+impl std::fmt::Display for Warning {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}: {}", self.place, self.message)
+    }
+}
+
+/// The file formats limn reads.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Format {
+    /// limn's native JSON (see README).
+    Json,
+    /// Newell's `.bpt`: patch count, then per patch `m n` and the points.
+    Bpt,
+    /// The 1991 teaset archive: patches as 16 vertex indices, then the vertices.
+    Teaset,
+    /// IGES 5.3, entity 128 surfaces.
+    Iges,
+    /// Wavefront OBJ meshes.
+    Obj,
+}
+
+/// A model: Bézier patches (from any surface format) and meshes (from OBJ).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Model {
+    /// The format it was read from.
+    pub format: Format,
+    /// The Bézier patches, NURBS surfaces already split.
+    pub patches: Vec<ModelPatch>,
+    /// The meshes.
+    pub meshes: Vec<Mesh>,
+    /// Things in the file that were read but not (yet) honoured.
+    pub warnings: Vec<Warning>,
+    /// The number of surfaces in the file (before splitting NURBS into Bézier pieces).
+    pub surfaces: usize,
+    /// A welding tolerance the file suggests (IGES: the global minimum resolution).
+    pub suggested_weld: Option<Rational>,
+}
+
+impl Model {
+    /// A model of Bézier patches, one surface each.
+    pub fn from_patches(format: Format, patches: Vec<RationalPatch>) -> Model {
+        let surfaces = patches.len();
+        Model {
+            format,
+            patches: patches
+                .into_iter()
+                .enumerate()
+                .map(|(i, surface)| ModelPatch {
+                    surface,
+                    source: PatchSource { surface: i, entity: None, span: None },
+                })
+                .collect(),
+            meshes: Vec::new(),
+            warnings: Vec::new(),
+            surfaces,
+            suggested_weld: None,
+        }
+    }
+
+    /// The axis-aligned bounding box of all control points and mesh vertices (it contains
+    /// the model), or `None` for an empty model.
+    pub fn bounding_box(&self) -> Option<[Point3; 2]> {
+        let mut b: Option<[Point3; 2]> = None;
+        let mut grow = |p: &Point3| match &mut b {
+            None => b = Some([p.clone(), p.clone()]),
+            Some([lo, hi]) => {
+                for k in 0..3 {
+                    if p[k] < lo[k] {
+                        lo[k] = p[k].clone();
+                    }
+                    if p[k] > hi[k] {
+                        hi[k] = p[k].clone();
+                    }
+                }
+            }
+        };
+        for p in &self.patches {
+            for q in p.surface.points() {
+                grow(q);
+            }
+        }
+        for m in &self.meshes {
+            for q in &m.vertices {
+                grow(q);
+            }
+        }
+        b
+    }
+
+    /// The length of the bounding box diagonal, in `f64` (for relative tolerances).
+    pub fn diagonal(&self) -> f64 {
+        self.bounding_box().map_or(0.0, |[lo, hi]| {
+            (0..3)
+                .map(|k| {
+                    let d = Rational::from(&hi[k] - &lo[k]).to_f64();
+                    d * d
+                })
+                .sum::<f64>()
+                .sqrt()
+        })
+    }
+}

@@ -9,4 +9,4 @@ mod patch;
 
 pub use mesh::Mesh;
 pub use nurbs::{NurbsError, NurbsSurface};
-pub use patch::{Edge, PatchError, Point3, RationalPatch};
+pub use patch::{Edge, PatchError, Point3, RationalPatch, MAX_PATCH_DEGREE};

@@ -1,0 +1,67 @@
+//! Errors from reading model files: always the file, the place and what is wrong.
+
+use std::fmt;
+
+/// Where in a file something is wrong.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Place {
+    /// The file as a whole (empty, unreadable, not text).
+    File,
+    /// A line (1-based).
+    Line(usize),
+    /// A line and column (1-based).
+    LineColumn(usize, usize),
+    /// An IGES entity: its directory-entry sequence number and type.
+    Entity {
+        /// Directory-entry sequence number.
+        de: usize,
+        /// Entity type number.
+        kind: i64,
+    },
+    /// A patch (0-based index) and the field within it.
+    Patch {
+        /// Patch index.
+        index: usize,
+        /// The field ("points", "weights[3]").
+        field: String,
+    },
+    /// A JSON path or other named location.
+    Named(String),
+}
+
+impl fmt::Display for Place {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Place::File => write!(f, "file"),
+            Place::Line(l) => write!(f, "line {l}"),
+            Place::LineColumn(l, c) => write!(f, "line {l}, column {c}"),
+            Place::Entity { de, kind } => write!(f, "entity {kind} at directory entry {de}"),
+            Place::Patch { index, field } if field.is_empty() => write!(f, "patch {index}"),
+            Place::Patch { index, field } => write!(f, "patch {index}, {field}"),
+            Place::Named(s) => write!(f, "{s}"),
+        }
+    }
+}
+
+/// A model file could not be read: one message naming the file, the place and the problem.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("{file}: {place}: {message}")]
+pub struct ReadError {
+    /// The file name as given.
+    pub file: String,
+    /// Where.
+    pub place: Place,
+    /// What is wrong.
+    pub message: String,
+}
+
+impl ReadError {
+    /// An error at a place in a file.
+    pub fn new(file: &str, place: Place, message: impl Into<String>) -> ReadError {
+        ReadError {
+            file: file.to_string(),
+            place,
+            message: message.into(),
+        }
+    }
+}

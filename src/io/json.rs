@@ -1,0 +1,138 @@
+//! limn's native JSON model format (see README, "Model formats"):
+//! `{"patches": [{"kind": "bezier", "degree": [m, n], "points": [[x, y, z], ...],
+//! "weights": [...]}, {"kind": "nurbs", "degree": [p, q], "knots_u": [...], "knots_v": [...],
+//! "points": [...], "weights": [...]}]}`. Numbers are JSON numbers or strings ("0.125",
+//! "1/3"), read exactly; weights default to 1.
+
+use super::{Place, ReadError};
+use crate::model::{Format, Model, ModelPatch, PatchSource};
+use crate::number::{parse_exact, Rational};
+use crate::surface::{NurbsSurface, Point3, RationalPatch, MAX_PATCH_DEGREE};
+use serde_json::Value;
+
+struct Ctx<'a> {
+    name: &'a str,
+    patch: usize,
+}
+
+impl Ctx<'_> {
+    fn err(&self, field: &str, msg: impl Into<String>) -> ReadError {
+        ReadError::new(self.name, Place::Patch { index: self.patch, field: field.to_string() }, msg)
+    }
+
+    fn number(&self, field: &str, v: &Value) -> Result<Rational, ReadError> {
+        let text = match v {
+            Value::Number(n) => n.to_string(),
+            Value::String(s) => s.clone(),
+            other => return Err(self.err(field, format!("expected a number, found {}", kind(other)))),
+        };
+        parse_exact(&text).map_err(|e| self.err(field, e.to_string()))
+    }
+
+    fn array<'v>(&self, field: &str, v: Option<&'v Value>) -> Result<&'v Vec<Value>, ReadError> {
+        match v {
+            Some(Value::Array(a)) => Ok(a),
+            Some(other) => Err(self.err(field, format!("expected an array, found {}", kind(other)))),
+            None => Err(self.err(field, "missing")),
+        }
+    }
+
+    fn degree(&self, v: Option<&Value>) -> Result<[usize; 2], ReadError> {
+        let a = self.array("degree", v)?;
+        if a.len() != 2 {
+            return Err(self.err("degree", format!("expected [m, n], found {} entries", a.len())));
+        }
+        let mut d = [0; 2];
+        for (k, x) in a.iter().enumerate() {
+            d[k] = x
+                .as_u64()
+                .filter(|&n| n as usize <= MAX_PATCH_DEGREE)
+                .ok_or_else(|| self.err("degree", format!("expected a whole number 0..={MAX_PATCH_DEGREE}, found {x}")))?
+                as usize;
+        }
+        Ok(d)
+    }
+
+    fn numbers(&self, field: &str, v: Option<&Value>) -> Result<Vec<Rational>, ReadError> {
+        let a = self.array(field, v)?;
+        a.iter()
+            .enumerate()
+            .map(|(i, x)| self.number(&format!("{field}[{i}]"), x))
+            .collect()
+    }
+
+    fn points(&self, v: Option<&Value>) -> Result<Vec<Point3>, ReadError> {
+        let a = self.array("points", v)?;
+        a.iter()
+            .enumerate()
+            .map(|(i, p)| {
+                let field = format!("points[{i}]");
+                let c = self.array(&field, Some(p))?;
+                if c.len() != 3 {
+                    return Err(self.err(&field, format!("expected [x, y, z], found {} numbers", c.len())));
+                }
+                Ok([self.number(&field, &c[0])?, self.number(&field, &c[1])?, self.number(&field, &c[2])?])
+            })
+            .collect()
+    }
+}
+
+fn kind(v: &Value) -> &'static str {
+    match v {
+        Value::Null => "null",
+        Value::Bool(_) => "a boolean",
+        Value::Number(_) => "a number",
+        Value::String(_) => "a string",
+        Value::Array(_) => "an array",
+        Value::Object(_) => "an object",
+    }
+}
+
+pub(super) fn read(name: &str, text: &str) -> Result<Model, ReadError> {
+    let root: Value = serde_json::from_str(text).map_err(|e| {
+        ReadError::new(name, Place::LineColumn(e.line(), e.column()), format!("invalid JSON: {e}"))
+    })?;
+    let top = |msg: &str| ReadError::new(name, Place::Named("top level".into()), msg.to_string());
+    let obj = root.as_object().ok_or_else(|| top("expected an object with a \"patches\" array"))?;
+    let list = obj
+        .get("patches")
+        .and_then(Value::as_array)
+        .ok_or_else(|| top("expected an object with a \"patches\" array"))?;
+    let mut model = Model::from_patches(Format::Json, Vec::new());
+    model.surfaces = list.len();
+    for (index, p) in list.iter().enumerate() {
+        let cx = Ctx { name, patch: index };
+        let o = p.as_object().ok_or_else(|| cx.err("", format!("expected an object, found {}", kind(p))))?;
+        let kind_name = o.get("kind").and_then(Value::as_str).unwrap_or("bezier");
+        let degree = cx.degree(o.get("degree"))?;
+        let points = cx.points(o.get("points"))?;
+        let weights = match o.get("weights") {
+            None | Some(Value::Null) => vec![Rational::from(1); points.len()],
+            w => cx.numbers("weights", w)?,
+        };
+        match kind_name {
+            "bezier" => {
+                let s = RationalPatch::new(degree, points, weights).map_err(|e| cx.err("", e.to_string()))?;
+                model.patches.push(ModelPatch { surface: s, source: PatchSource { surface: index, entity: None, span: None } });
+            }
+            "nurbs" => {
+                let ku = cx.numbers("knots_u", o.get("knots_u"))?;
+                let kv = cx.numbers("knots_v", o.get("knots_v"))?;
+                let nu = ku.len().checked_sub(degree[0] + 1).ok_or_else(|| cx.err("knots_u", "fewer knots than degree + 1"))?;
+                let nv = kv.len().checked_sub(degree[1] + 1).ok_or_else(|| cx.err("knots_v", "fewer knots than degree + 1"))?;
+                if nu * nv != points.len() {
+                    return Err(cx.err(
+                        "points",
+                        format!("the knot vectors give {nu} x {nv} = {} control points, found {}", nu * nv, points.len()),
+                    ));
+                }
+                let s = NurbsSurface::new(degree, ku, kv, [nu, nv], points, weights).map_err(|e| cx.err("", e.to_string()))?;
+                for (span, piece) in s.to_bezier() {
+                    model.patches.push(ModelPatch { surface: piece, source: PatchSource { surface: index, entity: None, span: Some(span) } });
+                }
+            }
+            other => return Err(cx.err("kind", format!("unknown kind {other:?} (expected \"bezier\" or \"nurbs\")"))),
+        }
+    }
+    Ok(model)
+}
