@@ -12,7 +12,11 @@ use std::process::ExitCode;
 pub const EMBEDDED_TEAPOT: &str = include_str!("../fixtures/bezier/teapot.bpt");
 
 #[derive(Parser, Debug)]
-#[command(name = "limn", version, about = "Certified visibility analysis of free-form surfaces")]
+#[command(
+    name = "limn",
+    version,
+    about = "Certified visibility analysis of free-form surfaces"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -58,7 +62,10 @@ pub struct CliError {
 
 impl CliError {
     fn input(message: impl Into<String>) -> CliError {
-        CliError { message: message.into(), code: 2 }
+        CliError {
+            message: message.into(),
+            code: 2,
+        }
     }
 }
 
@@ -68,7 +75,9 @@ fn parse_weld(s: &str) -> Result<WeldTolerance, CliError> {
     }
     match s.parse::<f64>() {
         Ok(t) if t.is_finite() && t > 0.0 => Ok(WeldTolerance::Absolute(t)),
-        _ => Err(CliError::input(format!("--weld: expected \"exact\" or a positive distance, found {s:?}"))),
+        _ => Err(CliError::input(format!(
+            "--weld: expected \"exact\" or a positive distance, found {s:?}"
+        ))),
     }
 }
 
@@ -83,11 +92,23 @@ where
 {
     let cli = Cli::try_parse_from(args).map_err(|e| {
         let code = if e.use_stderr() { 2 } else { 0 };
-        CliError { message: e.render().to_string().trim_end().to_string(), code }
+        CliError {
+            message: e.render().to_string().trim_end().to_string(),
+            code,
+        }
     })?;
-    let w = |r: std::io::Result<()>| r.map_err(|e| CliError { message: format!("cannot write the output: {e}"), code: 1 });
+    let w = |r: std::io::Result<()>| {
+        r.map_err(|e| CliError {
+            message: format!("cannot write the output: {e}"),
+            code: 1,
+        })
+    };
     match cli.command {
-        Command::Info { model, format, weld } => {
+        Command::Info {
+            model,
+            format,
+            weld,
+        } => {
             let name = model.display().to_string();
             let m = read_model(&model).map_err(|e| CliError::input(e.to_string()))?;
             let weld = match weld {
@@ -98,9 +119,17 @@ where
             w(print_info(&info, format, out))
         }
         Command::Demo { format } => {
-            let m = read_model_bytes("embedded teapot", EMBEDDED_TEAPOT.as_bytes(), Some(Format::Bpt))
-                .map_err(|e| CliError::input(e.to_string()))?;
-            let info = ModelInfo::of("embedded teapot (Newell, 32 bicubic patches)", &m, WeldTolerance::Exact);
+            let m = read_model_bytes(
+                "embedded teapot",
+                EMBEDDED_TEAPOT.as_bytes(),
+                Some(Format::Bpt),
+            )
+            .map_err(|e| CliError::input(e.to_string()))?;
+            let info = ModelInfo::of(
+                "embedded teapot (Newell, 32 bicubic patches)",
+                &m,
+                WeldTolerance::Exact,
+            );
             w(print_info(&info, format, out))
         }
     }
@@ -112,31 +141,65 @@ fn print_info(info: &ModelInfo, format: OutputFormat, out: &mut dyn Write) -> st
         return writeln!(out, "{s}");
     }
     writeln!(out, "model: {} ({:?})", info.file, info.format)?;
-    writeln!(out, "surfaces: {}, Bézier patches: {} ({} rational)", info.surfaces, info.patches, info.rational_patches)?;
+    writeln!(
+        out,
+        "surfaces: {}, Bézier patches: {} ({} rational)",
+        info.surfaces, info.patches, info.rational_patches
+    )?;
     if !info.degrees.is_empty() {
-        let d: Vec<String> = info.degrees.iter().map(|(k, v)| format!("{v} of degree {k}")).collect();
+        let d: Vec<String> = info
+            .degrees
+            .iter()
+            .map(|(k, v)| format!("{v} of degree {k}"))
+            .collect();
         writeln!(out, "degrees: {}", d.join(", "))?;
     }
     if let Some(b) = &info.bounding_box {
-        writeln!(out, "bounding box: [{}, {}, {}] .. [{}, {}, {}]", b.min[0], b.min[1], b.min[2], b.max[0], b.max[1], b.max[2])?;
+        writeln!(
+            out,
+            "bounding box: [{}, {}, {}] .. [{}, {}, {}]",
+            b.min[0], b.min[1], b.min[2], b.max[0], b.max[1], b.max[2]
+        )?;
     }
     if let Some(t) = &info.topology {
         let weld = match t.weld {
             WeldTolerance::Exact => "exact".to_string(),
-            WeldTolerance::Absolute(x) => format!("within {x} (largest gap welded {:.3e})", t.max_weld_gap),
+            WeldTolerance::Absolute(x) => {
+                format!("within {x} (largest gap welded {:.3e})", t.max_weld_gap)
+            }
         };
         writeln!(out, "edges: {} ({} shared, {} boundary, {} non-manifold); {} collapsed patch sides; weld {}", t.edges, t.shared_edges, t.boundary_edges, t.nonmanifold_edges, t.collapsed_edges, weld)?;
-        writeln!(out, "vertices: {}, components: {}", t.vertices, t.components)?;
+        writeln!(
+            out,
+            "vertices: {}, components: {}",
+            t.vertices, t.components
+        )?;
         match t.genus {
-            Some(g) => writeln!(out, "closed: yes, Euler characteristic {}, genus {}", t.euler_characteristic, g)?,
-            None => writeln!(out, "closed: no (Euler characteristic of the patch complex {})", t.euler_characteristic)?,
+            Some(g) => writeln!(
+                out,
+                "closed: yes, Euler characteristic {}, genus {}",
+                t.euler_characteristic, g
+            )?,
+            None => writeln!(
+                out,
+                "closed: no (Euler characteristic of the patch complex {})",
+                t.euler_characteristic
+            )?,
         }
     }
     for (i, m) in info.meshes.iter().enumerate() {
         writeln!(out, "mesh {i}: {} vertices, {} edges, {} faces ({}), {} boundary edges, {} non-manifold, {} components", m.vertices, m.edges, m.faces, if m.triangles { "triangles" } else { "polygons" }, m.boundary_edges, m.nonmanifold_edges, m.components)?;
         match m.genus {
-            Some(g) => writeln!(out, "  closed: yes, Euler characteristic {}, genus {}", m.euler_characteristic, g)?,
-            None => writeln!(out, "  closed: no (Euler characteristic {})", m.euler_characteristic)?,
+            Some(g) => writeln!(
+                out,
+                "  closed: yes, Euler characteristic {}, genus {}",
+                m.euler_characteristic, g
+            )?,
+            None => writeln!(
+                out,
+                "  closed: no (Euler characteristic {})",
+                m.euler_characteristic
+            )?,
         }
     }
     for wn in &info.warnings {

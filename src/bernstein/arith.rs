@@ -4,6 +4,15 @@ use super::{Bernstein, BernsteinError};
 use crate::number::{Number, Rational};
 use rug::Integer;
 
+/// `Π_a C(d_a, i_a)`, exactly.
+fn binomial_weight(degrees: &[usize], index: &[usize]) -> Integer {
+    degrees
+        .iter()
+        .zip(index)
+        .map(|(&d, &i)| Integer::from(Integer::binomial_u(d as u32, i as u32)))
+        .product()
+}
+
 impl<N: Number> Bernstein<N> {
     fn common_degrees(&self, other: &Self) -> Result<Vec<usize>, BernsteinError> {
         if self.nvars != other.nvars {
@@ -17,7 +26,12 @@ impl<N: Number> Bernstein<N> {
     fn zip_with(&self, other: &Self, f: impl Fn(&N, &N) -> N) -> Result<Self, BernsteinError> {
         let d = self.common_degrees(other)?;
         let (a, b) = (self.elevate_to(&d), other.elevate_to(&d));
-        let coeffs = a.coeffs.iter().zip(&b.coeffs).map(|(x, y)| f(x, y)).collect();
+        let coeffs = a
+            .coeffs
+            .iter()
+            .zip(&b.coeffs)
+            .map(|(x, y)| f(x, y))
+            .collect();
         Ok(Bernstein { coeffs, ..a })
     }
 
@@ -68,11 +82,7 @@ impl<N: Number> Bernstein<N> {
                 .iter()
                 .enumerate()
                 .map(|(flat, c)| {
-                    let idx = p.multi_index(flat);
-                    let mut w = Integer::from(1);
-                    for a in 0..k {
-                        w *= Integer::from(Integer::binomial_u(p.degrees[a] as u32, idx[a] as u32));
-                    }
+                    let w = binomial_weight(p.degrees(), &p.multi_index(flat));
                     c.mul(&N::from_rational(&Rational::from(w), prec))
                 })
                 .collect()
@@ -107,11 +117,7 @@ impl<N: Number> Bernstein<N> {
             .into_iter()
             .enumerate()
             .map(|(flat, c)| {
-                let idx = template.multi_index(flat);
-                let mut w = Integer::from(1);
-                for a in 0..k {
-                    w *= Integer::from(Integer::binomial_u(degrees[a] as u32, idx[a] as u32));
-                }
+                let w = binomial_weight(&degrees, &template.multi_index(flat));
                 let inv = N::from_rational(&Rational::from((Integer::from(1), w)), prec);
                 c.expect("every output index is reached").mul(&inv)
             })

@@ -4,7 +4,13 @@ use super::Bernstein;
 use crate::number::Number;
 
 /// One de Casteljau step on rows: `row_i = (1 - t) row_i + t row_{i+1}`, for i < len - 1.
-pub(super) fn casteljau_step<N: Number>(rows: &mut [N], stride: usize, len: usize, t: &N, one_minus_t: &N) {
+pub(super) fn casteljau_step<N: Number>(
+    rows: &mut [N],
+    stride: usize,
+    len: usize,
+    t: &N,
+    one_minus_t: &N,
+) {
     for i in 0..len - 1 {
         let (a, b) = rows.split_at_mut((i + 1) * stride);
         for (x, y) in a[i * stride..].iter_mut().zip(&b[..stride]) {

@@ -33,7 +33,8 @@ impl Bernstein<Rational> {
                 let mut prev = block[s].clone();
                 let mut fibre = vec![prev.clone()];
                 for i in 1..d {
-                    let num = Rational::from(&block[i * stride + s] * d as u64) - Rational::from(&prev * i as u64);
+                    let num = Rational::from(&block[i * stride + s] * d as u64)
+                        - Rational::from(&prev * i as u64);
                     prev = num / (d - i) as u64;
                     fibre.push(prev.clone());
                 }

@@ -8,7 +8,8 @@ use proptest::prelude::*;
 fn coeff() -> impl Strategy<Value = Rational> {
     prop_oneof![
         (-64i64..64, 1i64..17).prop_map(|(p, q)| Rational::from((p, q))),
-        (-5i64..5).prop_map(|k| Rational::from(1) + Rational::from(k) / Rational::from(rug::Integer::from(1) << 45u32)),
+        (-5i64..5).prop_map(|k| Rational::from(1)
+            + Rational::from(k) / Rational::from(rug::Integer::from(1) << 45u32)),
         Just(Rational::new()),
     ]
 }
@@ -21,15 +22,26 @@ fn poly(max_vars: usize, max_deg: usize) -> impl Strategy<Value = Bernstein<Rati
 }
 
 fn param() -> impl Strategy<Value = Rational> {
-    prop_oneof![(0i64..=64).prop_map(|k| Rational::from((k, 64))), (1i64..10).prop_map(|k| Rational::from((k, 10)))]
+    prop_oneof![
+        (0i64..=64).prop_map(|k| Rational::from((k, 64))),
+        (1i64..10).prop_map(|k| Rational::from((k, 10)))
+    ]
 }
 
 fn encloses_i(p: &Bernstein<Interval>, e: &Bernstein<Rational>) -> bool {
-    p.degrees() == e.degrees() && p.coeffs().iter().zip(e.coeffs()).all(|(i, q)| i.contains_rational(q))
+    p.degrees() == e.degrees()
+        && p.coeffs()
+            .iter()
+            .zip(e.coeffs())
+            .all(|(i, q)| i.contains_rational(q))
 }
 
 fn encloses_m(p: &Bernstein<MpInterval>, e: &Bernstein<Rational>) -> bool {
-    p.degrees() == e.degrees() && p.coeffs().iter().zip(e.coeffs()).all(|(i, q)| i.contains_rational(q))
+    p.degrees() == e.degrees()
+        && p.coeffs()
+            .iter()
+            .zip(e.coeffs())
+            .all(|(i, q)| i.contains_rational(q))
 }
 
 proptest! {
@@ -53,7 +65,7 @@ proptest! {
         let mut x: Vec<Rational> = vec![Rational::from((1, 3)); p.nvars()];
         x[axis] = Rational::from((1, 3));
         let mut y = x.clone();
-        y[axis] = Rational::from(&t * Rational::from((1, 3)));
+        y[axis] = &t * Rational::from((1, 3));
         prop_assert_eq!(el.eval(&x), p.eval(&y));
     }
 
@@ -66,7 +78,7 @@ proptest! {
         let mut x: Vec<Rational> = vec![Rational::from((3, 5)); p.nvars()];
         x[axis] = s.clone();
         let mut y = x.clone();
-        y[axis] = Rational::from(&a + Rational::from(&s * Rational::from(&b - &a)));
+        y[axis] = &a + &s * Rational::from(&b - &a);
         prop_assert_eq!(r.eval(&x), p.eval(&y));
         let pi: Bernstein<Interval> = p.convert(Precision::F64);
         let ri = pi.restrict(axis, &Interval::from_rational(&a, Precision::F64), &Interval::from_rational(&b, Precision::F64));
@@ -111,9 +123,9 @@ proptest! {
         prop_assume!(p.nvars() == q.nvars());
         let x = &t[..p.nvars()];
         let pq = &p * &q;
-        prop_assert_eq!(pq.eval(x), Rational::from(p.eval(x) * q.eval(x)));
-        prop_assert_eq!((&p + &q).eval(x), Rational::from(p.eval(x) + q.eval(x)));
-        prop_assert_eq!((&p - &q).eval(x), Rational::from(p.eval(x) - q.eval(x)));
+        prop_assert_eq!(pq.eval(x), p.eval(x) * q.eval(x));
+        prop_assert_eq!((&p + &q).eval(x), p.eval(x) + q.eval(x));
+        prop_assert_eq!((&p - &q).eval(x), p.eval(x) - q.eval(x));
         let pi: Bernstein<Interval> = p.convert(Precision::F64);
         let qi: Bernstein<Interval> = q.convert(Precision::F64);
         prop_assert!(encloses_i(&(&pi * &qi), &pq));
@@ -121,7 +133,7 @@ proptest! {
         // so (p(x+h) - p(x-h)) / 2h - p'(x) = O(h^2); check with the exact identity for the
         // degree instead: the derivative of the product rule.
         let lhs = pq.deriv(0).eval(x);
-        let rhs = Rational::from(p.deriv(0).eval(x) * q.eval(x)) + Rational::from(p.eval(x) * q.deriv(0).eval(x));
+        let rhs = p.deriv(0).eval(x) * q.eval(x) + p.eval(x) * q.deriv(0).eval(x);
         prop_assert_eq!(lhs, rhs);
         prop_assert!(encloses_i(&pi.deriv(0), &p.deriv(0)));
     }
@@ -130,7 +142,11 @@ proptest! {
 #[test]
 fn derivative_of_monomials() {
     // t^2 in degree 2: coefficients 0, 0, 1; derivative 2t: coefficients 0, 2.
-    let p = Bernstein::new(&[2], vec![Rational::new(), Rational::new(), Rational::from(1)]).unwrap();
+    let p = Bernstein::new(
+        &[2],
+        vec![Rational::new(), Rational::new(), Rational::from(1)],
+    )
+    .unwrap();
     assert_eq!(p.deriv(0).coeffs(), &[Rational::new(), Rational::from(2)]);
     // An elevated linear polynomial reduces back to degree 1.
     let l = Bernstein::new(&[1], vec![Rational::from(3), Rational::from(-1)]).unwrap();

@@ -57,7 +57,11 @@ impl ModelInfo {
             surfaces: model.surfaces,
             patches: model.patches.len(),
             degrees,
-            rational_patches: model.patches.iter().filter(|p| !p.surface.is_polynomial()).count(),
+            rational_patches: model
+                .patches
+                .iter()
+                .filter(|p| !p.surface.is_polynomial())
+                .count(),
             bounding_box,
             topology: (!model.patches.is_empty()).then(|| PatchTopology::of_model(model, weld)),
             meshes: model.meshes.iter().map(MeshTopology::of_mesh).collect(),

@@ -92,7 +92,11 @@ impl Model {
                 .enumerate()
                 .map(|(i, surface)| ModelPatch {
                     surface,
-                    source: PatchSource { surface: i, entity: None, span: None },
+                    source: PatchSource {
+                        surface: i,
+                        entity: None,
+                        span: None,
+                    },
                 })
                 .collect(),
             meshes: Vec::new(),

@@ -166,6 +166,10 @@ impl Welder {
 /// A patch side as control points and weights.
 type Side<'a> = Vec<(&'a Point3, &'a Rational)>;
 
+/// Edge classes under one key (sorted endpoint vertex ids): a representative side and the
+/// patches whose sides match it.
+type EdgeClasses<'a> = HashMap<(usize, usize), Vec<(Side<'a>, Vec<usize>)>>;
+
 fn points_match(a: &Side, b: &Side, tol: WeldTolerance, reversed: bool, max_gap: &mut f64) -> bool {
     if a.len() != b.len() {
         return false;
@@ -211,10 +215,16 @@ impl PatchTopology {
     /// reversed) and their weights are proportional. Sides of different degrees are not
     /// matched (degree elevation to match them is left to a later version).
     pub fn of_patches(patches: &[&RationalPatch], weld: WeldTolerance) -> PatchTopology {
-        let mut welder = Welder { tol: weld, exact: HashMap::new(), grid: HashMap::new(), points: Vec::new(), max_gap: 0.0 };
+        let mut welder = Welder {
+            tol: weld,
+            exact: HashMap::new(),
+            grid: HashMap::new(),
+            points: Vec::new(),
+            max_gap: 0.0,
+        };
         let mut used = vec![];
         // Edge classes: by sorted endpoint ids, a list of (representative side, patch sides).
-        let mut classes: HashMap<(usize, usize), Vec<(Side, Vec<usize>)>> = HashMap::new();
+        let mut classes: EdgeClasses = HashMap::new();
         let mut collapsed_edges = 0;
         let mut max_gap = 0.0f64;
         for (pi, patch) in patches.iter().enumerate() {
@@ -231,7 +241,8 @@ impl PatchTopology {
                 let key = (a.min(b), a.max(b));
                 let bucket = classes.entry(key).or_default();
                 let found = bucket.iter().position(|(rep, _)| {
-                    points_match(rep, &side, weld, false, &mut max_gap) || points_match(rep, &side, weld, true, &mut max_gap)
+                    points_match(rep, &side, weld, false, &mut max_gap)
+                        || points_match(rep, &side, weld, true, &mut max_gap)
                 });
                 match found {
                     Some(k) => bucket[k].1.push(pi),

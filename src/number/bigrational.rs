@@ -15,10 +15,7 @@ pub fn to_big_rational(q: &Rational) -> BigRational {
         s.parse::<BigInt>()
             .expect("GMP prints integers num-bigint parses")
     };
-    BigRational::new(
-        parse(q.numer().to_string()),
-        parse(q.denom().to_string()),
-    )
+    BigRational::new(parse(q.numer().to_string()), parse(q.denom().to_string()))
 }
 
 impl Number for BigRational {

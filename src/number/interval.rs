@@ -34,20 +34,41 @@ fn two_sum_err(a: f64, b: f64, s: f64) -> f64 {
     (a - (s - bb)) + (b - bb)
 }
 
-/// `a + b` rounded down and up: `(rd, ru)`.
+/// `a + b` rounded down.
 #[inline]
-pub(crate) fn add_rd_ru(a: f64, b: f64) -> (f64, f64) {
+fn add_rd(a: f64, b: f64) -> f64 {
     let s = a + b;
-    if s.is_finite() && s.abs() < SUM_EXACT_ERROR_MAX {
-        let e = two_sum_err(a, b, s);
-        if e < 0.0 {
-            (s.next_down(), s)
-        } else if e > 0.0 {
-            (s, s.next_up())
+    if s.abs() < SUM_EXACT_ERROR_MAX {
+        if two_sum_err(a, b, s) < 0.0 {
+            s.next_down()
         } else {
-            (s, s)
+            s
         }
-    } else if s.is_nan() {
+    } else {
+        add_rd_ru_special(a, b, s).0
+    }
+}
+
+/// `a + b` rounded up.
+#[inline]
+fn add_ru(a: f64, b: f64) -> f64 {
+    let s = a + b;
+    if s.abs() < SUM_EXACT_ERROR_MAX {
+        if two_sum_err(a, b, s) > 0.0 {
+            s.next_up()
+        } else {
+            s
+        }
+    } else {
+        add_rd_ru_special(a, b, s).1
+    }
+}
+
+/// The rare cases of a sum: NaN, infinities, |s| >= 2^1023.
+#[cold]
+#[inline(never)]
+fn add_rd_ru_special(a: f64, b: f64, s: f64) -> (f64, f64) {
+    if s.is_nan() {
         // inf + (-inf): nothing is known.
         (f64::NEG_INFINITY, f64::INFINITY)
     } else if s.is_finite() {
@@ -59,6 +80,28 @@ pub(crate) fn add_rd_ru(a: f64, b: f64) -> (f64, f64) {
         (f64::MAX, f64::INFINITY)
     } else {
         (f64::NEG_INFINITY, -f64::MAX)
+    }
+}
+
+/// `x / 2` rounded down. Halving is exact unless the result is subnormal.
+#[inline]
+fn half_rd(x: f64) -> f64 {
+    let h = x * 0.5;
+    if h * 2.0 == x {
+        h
+    } else {
+        h.next_down()
+    }
+}
+
+/// `x / 2` rounded up.
+#[inline]
+fn half_ru(x: f64) -> f64 {
+    let h = x * 0.5;
+    if h * 2.0 == x {
+        h
+    } else {
+        h.next_up()
     }
 }
 
@@ -88,17 +131,6 @@ pub(crate) fn mul_rd_ru(a: f64, b: f64) -> (f64, f64) {
         (f64::MAX, f64::INFINITY)
     } else {
         (f64::NEG_INFINITY, -f64::MAX)
-    }
-}
-
-/// `x / 2` rounded down and up. Halving is exact unless the result is subnormal.
-#[inline]
-fn half_rd_ru(x: f64) -> (f64, f64) {
-    let h = x * 0.5;
-    if h * 2.0 == x {
-        (h, h)
-    } else {
-        (h.next_down(), h.next_up())
     }
 }
 
@@ -133,7 +165,7 @@ impl Interval {
 
     /// The width `hi - lo`, rounded up.
     pub fn width(&self) -> f64 {
-        add_rd_ru(self.hi, -self.lo).1
+        add_ru(self.hi, -self.lo)
     }
 
     /// Whether `x` lies in the interval.
@@ -188,16 +220,16 @@ impl Number for Interval {
     #[inline]
     fn add(&self, rhs: &Self) -> Self {
         Interval {
-            lo: add_rd_ru(self.lo, rhs.lo).0,
-            hi: add_rd_ru(self.hi, rhs.hi).1,
+            lo: add_rd(self.lo, rhs.lo),
+            hi: add_ru(self.hi, rhs.hi),
         }
     }
 
     #[inline]
     fn sub(&self, rhs: &Self) -> Self {
         Interval {
-            lo: add_rd_ru(self.lo, -rhs.hi).0,
-            hi: add_rd_ru(self.hi, -rhs.lo).1,
+            lo: add_rd(self.lo, -rhs.hi),
+            hi: add_ru(self.hi, -rhs.lo),
         }
     }
 
@@ -224,9 +256,10 @@ impl Number for Interval {
 
     #[inline]
     fn midpoint(&self, rhs: &Self) -> Self {
-        let lo = half_rd_ru(add_rd_ru(self.lo, rhs.lo).0).0;
-        let hi = half_rd_ru(add_rd_ru(self.hi, rhs.hi).1).1;
-        Interval { lo, hi }
+        Interval {
+            lo: half_rd(add_rd(self.lo, rhs.lo)),
+            hi: half_ru(add_ru(self.hi, rhs.hi)),
+        }
     }
 
     #[inline]

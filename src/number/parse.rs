@@ -150,7 +150,10 @@ mod tests {
         assert_eq!(parse_exact("1/3").unwrap(), q(1, 3));
         assert_eq!(parse_exact("0.5/0.25").unwrap(), q(2, 1));
         // 0.1 is not the double 0.1.
-        assert_ne!(parse_exact("0.1").unwrap(), Rational::from_f64(0.1).unwrap());
+        assert_ne!(
+            parse_exact("0.1").unwrap(),
+            Rational::from_f64(0.1).unwrap()
+        );
     }
 
     #[test]

@@ -60,6 +60,11 @@ impl Sign {
         self != Sign::Unknown
     }
 
+}
+
+impl std::ops::Mul for Sign {
+    type Output = Sign;
+
     /// The sign of a product of two numbers with these signs.
     ///
     /// | × | − | 0 | + | ? |
@@ -68,7 +73,7 @@ impl Sign {
     /// | 0 | 0 | 0 | 0 | 0 |
     /// | + | − | 0 | + | ? |
     /// | ? | ? | 0 | ? | ? |
-    pub fn mul(self, other: Sign) -> Sign {
+    fn mul(self, other: Sign) -> Sign {
         use Sign::*;
         match (self, other) {
             (Zero, _) | (_, Zero) => Zero,
@@ -78,8 +83,13 @@ impl Sign {
         }
     }
 
+}
+
+impl std::ops::Neg for Sign {
+    type Output = Sign;
+
     /// The sign of the negated number.
-    pub fn neg(self) -> Sign {
+    fn neg(self) -> Sign {
         match self {
             Sign::Negative => Sign::Positive,
             Sign::Positive => Sign::Negative,
@@ -87,6 +97,9 @@ impl Sign {
         }
     }
 
+}
+
+impl Sign {
     /// The common sign of a set of numbers with these signs, when all agree strictly.
     ///
     /// Returns `Positive` (`Negative`) when every sign is `Positive` (`Negative`), `Zero` when
@@ -118,13 +131,15 @@ mod tests {
         let all = [Negative, Zero, Positive, Unknown];
         for a in all {
             for b in all {
-                assert_eq!(a.mul(b), b.mul(a));
+                assert_eq!(a * b, b * a);
             }
-            assert_eq!(a.mul(Zero), Zero);
+            assert_eq!(a * Zero, Zero);
         }
-        assert_eq!(Negative.mul(Negative), Positive);
-        assert_eq!(Negative.mul(Positive), Negative);
-        assert_eq!(Unknown.mul(Positive), Unknown);
+        assert_eq!(Negative * Negative, Positive);
+        assert_eq!(Negative * Positive, Negative);
+        assert_eq!(Unknown * Positive, Unknown);
+        assert_eq!(-Negative, Positive);
+        assert_eq!(-Unknown, Unknown);
     }
 
     #[test]

@@ -14,9 +14,8 @@ fn rational() -> impl Strategy<Value = Rational> {
         (-50i32..50, 40u32..61).prop_map(|(k, e)| {
             Rational::from(1) + Rational::from(k) / Rational::from(rug::Integer::from(1) << e)
         }),
-        (-1000i64..1000, 900u32..1100).prop_map(|(p, e)| {
-            Rational::from(p) / Rational::from(rug::Integer::from(1) << e)
-        }),
+        (-1000i64..1000, 900u32..1100)
+            .prop_map(|(p, e)| { Rational::from(p) / Rational::from(rug::Integer::from(1) << e) }),
         Just(Rational::new()),
     ]
 }
@@ -89,7 +88,7 @@ proptest! {
             if exact.cmp0() == std::cmp::Ordering::Equal || exact.clone().abs() < 1e-290 {
                 continue;
             }
-            let err = Rational::from(Rational::from_f64(r).unwrap() - &exact).abs();
+            let err = (Rational::from_f64(r).unwrap() - &exact).abs();
             let bound = exact.abs() / Rational::from(rug::Integer::from(1) << 53);
             prop_assert!(err <= bound, "{name}: {x} {y}");
         }
@@ -123,7 +122,13 @@ fn exact_zero_is_decided_by_intervals() {
     assert_eq!(three.mul(&tenth).sub(&tenth3).sign(), Sign::Unknown);
     // ... and exact rationals decide it.
     let q = Rational::from((1, 10));
-    assert_eq!(Rational::from(3).mul(&q).sub(&Rational::from((3, 10))).sign(), Sign::Zero);
+    assert_eq!(
+        Rational::from(3)
+            .mul(&q)
+            .sub(&Rational::from((3, 10)))
+            .sign(),
+        Sign::Zero
+    );
 }
 
 #[test]
@@ -144,7 +149,9 @@ fn overflow_and_infinities_stay_sound() {
     assert!(t.lo() <= t.hi() && t.sign() != Sign::Negative);
     let h = Interval::point(f64::from_bits(1)).midpoint(&Interval::point(0.0));
     assert!(h.contains(0.0) || h.lo() > 0.0);
-    assert!(h.lo() <= f64::from_bits(1) / 2.0 && f64::from_bits(1) / 2.0 <= h.hi() || h.contains(0.0));
+    assert!(
+        h.lo() <= f64::from_bits(1) / 2.0 && f64::from_bits(1) / 2.0 <= h.hi() || h.contains(0.0)
+    );
 }
 
 #[test]

@@ -24,7 +24,8 @@ impl RationalPatch {
         }
         let d = self.degree();
         Some([0, 1, 2].map(|k| {
-            Bernstein::new(&d, self.points().iter().map(|p| p[k].clone()).collect()).expect("counts checked")
+            Bernstein::new(&d, self.points().iter().map(|p| p[k].clone()).collect())
+                .expect("counts checked")
         }))
     }
 

@@ -80,19 +80,38 @@ pub struct NurbsSurface {
 /// A homogeneous control point `[wx, wy, wz, w]`.
 type Hom = [Rational; 4];
 
-fn check_knots(dir: &'static str, degree: usize, points: usize, knots: &[Rational]) -> Result<(), NurbsError> {
+fn check_knots(
+    dir: &'static str,
+    degree: usize,
+    points: usize,
+    knots: &[Rational],
+) -> Result<(), NurbsError> {
     if degree > super::patch::MAX_PATCH_DEGREE {
         return Err(NurbsError::DegreeTooHigh(degree));
     }
     if points < degree + 1 {
-        return Err(NurbsError::TooFewPoints { dir, degree, points });
+        return Err(NurbsError::TooFewPoints {
+            dir,
+            degree,
+            points,
+        });
     }
     let expected = points + degree + 1;
     if knots.len() != expected {
-        return Err(NurbsError::KnotCount { dir, points, degree, expected, got: knots.len() });
+        return Err(NurbsError::KnotCount {
+            dir,
+            points,
+            degree,
+            expected,
+            got: knots.len(),
+        });
     }
     if let Some(index) = (1..knots.len()).find(|&i| knots[i] < knots[i - 1]) {
-        return Err(NurbsError::Decreasing { dir, index, value: knots[index].to_string() });
+        return Err(NurbsError::Decreasing {
+            dir,
+            index,
+            value: knots[index].to_string(),
+        });
     }
     if knots[degree] >= knots[points] {
         return Err(NurbsError::EmptyDomain { dir });
@@ -120,7 +139,9 @@ fn insert_knot(p: usize, knots: &mut Vec<Rational>, points: &mut Vec<Hom>, u: &R
             let den = Rational::from(&knots[i + p] - &knots[i]);
             let alpha = Rational::from(u - &knots[i]) / den;
             let beta = Rational::from(1 - &alpha);
-            let q: Hom = std::array::from_fn(|c| Rational::from(&alpha * &points[i][c]) + Rational::from(&beta * &points[i - 1][c]));
+            let q: Hom = std::array::from_fn(|c| {
+                Rational::from(&alpha * &points[i][c]) + Rational::from(&beta * &points[i - 1][c])
+            });
             new_points.push(q);
         }
     }
@@ -173,12 +194,28 @@ impl NurbsSurface {
         check_knots("v", degree[1], counts[1], &knots_v)?;
         let expected = counts[0] * counts[1];
         if points.len() != expected || weights.len() != expected {
-            return Err(NurbsError::PointCount { expected, got: points.len().min(weights.len()) });
+            return Err(NurbsError::PointCount {
+                expected,
+                got: points.len().min(weights.len()),
+            });
         }
-        if let Some((index, w)) = weights.iter().enumerate().find(|(_, w)| w.cmp0() != std::cmp::Ordering::Greater) {
-            return Err(NurbsError::NonPositiveWeight { index, value: w.to_string() });
+        if let Some((index, w)) = weights
+            .iter()
+            .enumerate()
+            .find(|(_, w)| w.cmp0() != std::cmp::Ordering::Greater)
+        {
+            return Err(NurbsError::NonPositiveWeight {
+                index,
+                value: w.to_string(),
+            });
         }
-        Ok(NurbsSurface { degree, knots: [knots_u, knots_v], counts, points, weights })
+        Ok(NurbsSurface {
+            degree,
+            knots: [knots_u, knots_v],
+            counts,
+            points,
+            weights,
+        })
     }
 
     /// The degree (p, q).
@@ -208,7 +245,12 @@ impl NurbsSurface {
         let k = i * self.counts[1] + j;
         let w = &self.weights[k];
         let p = &self.points[k];
-        [Rational::from(&p[0] * w), Rational::from(&p[1] * w), Rational::from(&p[2] * w), w.clone()]
+        [
+            Rational::from(&p[0] * w),
+            Rational::from(&p[1] * w),
+            Rational::from(&p[2] * w),
+            w.clone(),
+        ]
     }
 
     /// The rational Bézier patches of this surface, one per nonempty knot span pair, row by
@@ -219,7 +261,13 @@ impl NurbsSurface {
         let [nu, nv] = self.counts;
         // Split along v: each row i (fixed u index) is a curve in v.
         let rows: Vec<Vec<Vec<Hom>>> = (0..nu)
-            .map(|i| bezier_segments(q, &self.knots[1], &(0..nv).map(|j| self.hom(i, j)).collect::<Vec<_>>()))
+            .map(|i| {
+                bezier_segments(
+                    q,
+                    &self.knots[1],
+                    &(0..nv).map(|j| self.hom(i, j)).collect::<Vec<_>>(),
+                )
+            })
             .collect();
         let segs_v = rows.first().map_or(0, |r| r.len());
         let mut patches = Vec::new();
@@ -228,13 +276,16 @@ impl NurbsSurface {
         for sv in 0..segs_v {
             let cols: Vec<Vec<Vec<Hom>>> = (0..=q)
                 .map(|jj| {
-                    let curve: Vec<Hom> = (0..nu).map(|i| rows[i][sv][jj].clone()).collect();
+                    let curve: Vec<Hom> = rows.iter().map(|row| row[sv][jj].clone()).collect();
                     bezier_segments(p, &self.knots[0], &curve)
                 })
                 .collect();
             columns.push(cols);
         }
-        let segs_u = columns.first().and_then(|c| c.first()).map_or(0, |c| c.len());
+        let segs_u = columns
+            .first()
+            .and_then(|c| c.first())
+            .map_or(0, |c| c.len());
         for su in 0..segs_u {
             for (sv, cols) in columns.iter().enumerate() {
                 let mut pts = Vec::with_capacity((p + 1) * (q + 1));
@@ -247,7 +298,8 @@ impl NurbsSurface {
                         ws.push(w);
                     }
                 }
-                let patch = RationalPatch::new([p, q], pts, ws).expect("knot insertion keeps weights positive");
+                let patch = RationalPatch::new([p, q], pts, ws)
+                    .expect("knot insertion keeps weights positive");
                 patches.push(((su, sv), patch));
             }
         }
@@ -264,7 +316,14 @@ impl NurbsSurface {
         let dom = self.domain();
         assert!(*u >= dom[0][0] && *u <= dom[0][1] && *v >= dom[1][0] && *v <= dom[1][1]);
         let rows: Vec<Hom> = (0..nu)
-            .map(|i| de_boor(q, &self.knots[1], &(0..nv).map(|j| self.hom(i, j)).collect::<Vec<_>>(), v))
+            .map(|i| {
+                de_boor(
+                    q,
+                    &self.knots[1],
+                    &(0..nv).map(|j| self.hom(i, j)).collect::<Vec<_>>(),
+                    v,
+                )
+            })
             .collect();
         let h = de_boor(p, &self.knots[0], &rows, u);
         [0, 1, 2].map(|c| Rational::from(&h[c] / &h[3]))
@@ -282,9 +341,12 @@ fn de_boor(p: usize, knots: &[Rational], points: &[Hom], u: &Rational) -> Hom {
     for r in 1..=p {
         for j in (r..=p).rev() {
             let i = j + k - p;
-            let alpha = Rational::from(u - &knots[i]) / Rational::from(&knots[i + p + 1 - r] - &knots[i]);
+            let alpha =
+                Rational::from(u - &knots[i]) / Rational::from(&knots[i + p + 1 - r] - &knots[i]);
             let beta = Rational::from(1 - &alpha);
-            d[j] = std::array::from_fn(|c| Rational::from(&alpha * &d[j][c]) + Rational::from(&beta * &d[j - 1][c]));
+            d[j] = std::array::from_fn(|c| {
+                Rational::from(&alpha * &d[j][c]) + Rational::from(&beta * &d[j - 1][c])
+            });
         }
     }
     d[p].clone()
@@ -304,30 +366,50 @@ mod tests {
     fn bezier_pieces_are_exact() {
         let (p, qd) = (3, 2);
         let (nu, nv) = (6, 5);
-        let ku: Vec<Rational> = [0, 0, 0, 0, 1, 3, 4, 4, 4, 4].iter().map(|&k| q(k, 1)).collect();
+        let ku: Vec<Rational> = [0, 0, 0, 0, 1, 3, 4, 4, 4, 4]
+            .iter()
+            .map(|&k| q(k, 1))
+            .collect();
         // Unclamped in v, with a double interior knot.
-        let kv: Vec<Rational> = [-2, -1, 0, 1, 1, 2, 3, 4].iter().map(|&k| q(k, 2)).collect();
+        let kv: Vec<Rational> = [-2, -1, 0, 1, 1, 2, 3, 4]
+            .iter()
+            .map(|&k| q(k, 2))
+            .collect();
         let mut pts = Vec::new();
         let mut ws = Vec::new();
         for i in 0..nu {
             for j in 0..nv {
-                pts.push([q(i as i64, 1), q(j as i64, 1), q(((i * 7 + j * 3) % 5) as i64, 3)]);
+                pts.push([
+                    q(i as i64, 1),
+                    q(j as i64, 1),
+                    q(((i * 7 + j * 3) % 5) as i64, 3),
+                ]);
                 ws.push(q(1 + ((i + 2 * j) % 3) as i64, 2));
             }
         }
         let s = NurbsSurface::new([p, qd], ku.clone(), kv.clone(), [nu, nv], pts, ws).unwrap();
         let pieces = s.to_bezier();
-        let su: Vec<(Rational, Rational)> = vec![(q(0, 1), q(1, 1)), (q(1, 1), q(3, 1)), (q(3, 1), q(4, 1))];
+        let su: Vec<(Rational, Rational)> =
+            vec![(q(0, 1), q(1, 1)), (q(1, 1), q(3, 1)), (q(3, 1), q(4, 1))];
         // Domain [t_2, t_5] = [0, 1] with the double knot 1/2 inside.
         let sv: Vec<(Rational, Rational)> = vec![(q(0, 1), q(1, 2)), (q(1, 2), q(1, 1))];
         assert_eq!(pieces.len(), su.len() * sv.len());
         for ((iu, iv), patch) in &pieces {
             let (a, b) = &su[*iu];
             let (c, d) = &sv[*iv];
-            for (s0, t0) in [(q(0, 1), q(0, 1)), (q(1, 3), q(2, 5)), (q(1, 1), q(1, 1)), (q(5, 7), q(1, 9))] {
-                let u = Rational::from(a + Rational::from(&s0 * Rational::from(b - a)));
-                let v = Rational::from(c + Rational::from(&t0 * Rational::from(d - c)));
-                assert_eq!(patch.eval(&s0, &t0), s.eval(&u, &v), "piece ({iu},{iv}) at ({s0},{t0})");
+            for (s0, t0) in [
+                (q(0, 1), q(0, 1)),
+                (q(1, 3), q(2, 5)),
+                (q(1, 1), q(1, 1)),
+                (q(5, 7), q(1, 9)),
+            ] {
+                let u = a + &s0 * Rational::from(b - a);
+                let v = c + &t0 * Rational::from(d - c);
+                assert_eq!(
+                    patch.eval(&s0, &t0),
+                    s.eval(&u, &v),
+                    "piece ({iu},{iv}) at ({s0},{t0})"
+                );
             }
         }
     }
@@ -337,17 +419,46 @@ mod tests {
         let k = |v: &[i64]| v.iter().map(|&x| q(x, 1)).collect::<Vec<_>>();
         let pts = vec![[q(0, 1), q(0, 1), q(0, 1)]; 4];
         let ws = vec![q(1, 1); 4];
-        assert!(NurbsSurface::new([1, 1], k(&[0, 0, 1, 1]), k(&[0, 0, 1, 1]), [2, 2], pts.clone(), ws.clone()).is_ok());
+        assert!(NurbsSurface::new(
+            [1, 1],
+            k(&[0, 0, 1, 1]),
+            k(&[0, 0, 1, 1]),
+            [2, 2],
+            pts.clone(),
+            ws.clone()
+        )
+        .is_ok());
         assert!(matches!(
-            NurbsSurface::new([1, 1], k(&[0, 0, 1]), k(&[0, 0, 1, 1]), [2, 2], pts.clone(), ws.clone()),
+            NurbsSurface::new(
+                [1, 1],
+                k(&[0, 0, 1]),
+                k(&[0, 0, 1, 1]),
+                [2, 2],
+                pts.clone(),
+                ws.clone()
+            ),
             Err(NurbsError::KnotCount { .. })
         ));
         assert!(matches!(
-            NurbsSurface::new([1, 1], k(&[0, 1, 0, 1]), k(&[0, 0, 1, 1]), [2, 2], pts.clone(), ws.clone()),
+            NurbsSurface::new(
+                [1, 1],
+                k(&[0, 1, 0, 1]),
+                k(&[0, 0, 1, 1]),
+                [2, 2],
+                pts.clone(),
+                ws.clone()
+            ),
             Err(NurbsError::Decreasing { .. })
         ));
         assert!(matches!(
-            NurbsSurface::new([1, 1], k(&[0, 1, 1, 1]), k(&[0, 0, 1, 1]), [2, 2], pts.clone(), ws.clone()),
+            NurbsSurface::new(
+                [1, 1],
+                k(&[0, 1, 1, 1]),
+                k(&[0, 0, 1, 1]),
+                [2, 2],
+                pts.clone(),
+                ws.clone()
+            ),
             Err(NurbsError::EmptyDomain { .. })
         ));
         let mut bad = ws.clone();

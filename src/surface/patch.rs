@@ -99,22 +99,49 @@ impl RationalPatch {
     ///
     /// # Errors
     /// [`PatchError`] on wrong counts or a weight that is not positive.
-    pub fn new(degree: [usize; 2], points: Vec<Point3>, weights: Vec<Rational>) -> Result<Self, PatchError> {
+    pub fn new(
+        degree: [usize; 2],
+        points: Vec<Point3>,
+        weights: Vec<Rational>,
+    ) -> Result<Self, PatchError> {
         let [m, n] = degree;
         if m > MAX_PATCH_DEGREE || n > MAX_PATCH_DEGREE {
-            return Err(PatchError::DegreeTooHigh { m, n, max: MAX_PATCH_DEGREE });
+            return Err(PatchError::DegreeTooHigh {
+                m,
+                n,
+                max: MAX_PATCH_DEGREE,
+            });
         }
         let expected = (m + 1) * (n + 1);
         if points.len() != expected {
-            return Err(PatchError::PointCount { m, n, expected, got: points.len() });
+            return Err(PatchError::PointCount {
+                m,
+                n,
+                expected,
+                got: points.len(),
+            });
         }
         if weights.len() != points.len() {
-            return Err(PatchError::WeightCount { points: points.len(), weights: weights.len() });
+            return Err(PatchError::WeightCount {
+                points: points.len(),
+                weights: weights.len(),
+            });
         }
-        if let Some((index, w)) = weights.iter().enumerate().find(|(_, w)| w.cmp0() != std::cmp::Ordering::Greater) {
-            return Err(PatchError::NonPositiveWeight { index, value: w.to_string() });
+        if let Some((index, w)) = weights
+            .iter()
+            .enumerate()
+            .find(|(_, w)| w.cmp0() != std::cmp::Ordering::Greater)
+        {
+            return Err(PatchError::NonPositiveWeight {
+                index,
+                value: w.to_string(),
+            });
         }
-        Ok(RationalPatch { degree, points, weights })
+        Ok(RationalPatch {
+            degree,
+            points,
+            weights,
+        })
     }
 
     /// A polynomial (all weights 1) patch.
@@ -168,7 +195,12 @@ impl RationalPatch {
                 .collect();
             Bernstein::new(&d, c).expect("counts checked in new")
         };
-        [coord(0), coord(1), coord(2), Bernstein::new(&d, self.weights.clone()).expect("counts checked")]
+        [
+            coord(0),
+            coord(1),
+            coord(2),
+            Bernstein::new(&d, self.weights.clone()).expect("counts checked"),
+        ]
     }
 
     /// The point S(u, v), exactly.
@@ -195,7 +227,12 @@ impl RationalPatch {
     /// The four corner points S(0,0), S(1,0), S(1,1), S(0,1).
     pub fn corners(&self) -> [&Point3; 4] {
         let [m, n] = self.degree;
-        [self.point(0, 0), self.point(m, 0), self.point(m, n), self.point(0, n)]
+        [
+            self.point(0, 0),
+            self.point(m, 0),
+            self.point(m, n),
+            self.point(0, n),
+        ]
     }
 
     /// The axis-aligned box of the control points (which contains the patch, by the convex
