@@ -34,7 +34,7 @@ enum Command {
         format: OutputFormat,
         /// How patch boundaries are matched: "exact", or an absolute distance. Default: exact,
         /// except for IGES (the file's minimum resolution).
-        #[arg(long)]
+        #[arg(long, allow_hyphen_values = true)]
         weld: Option<String>,
     },
     /// Runs the main job on the embedded Newell teapot (no files needed).
@@ -91,10 +91,23 @@ where
     T: Into<std::ffi::OsString> + Clone,
 {
     let cli = Cli::try_parse_from(args).map_err(|e| {
-        let code = if e.use_stderr() { 2 } else { 0 };
-        CliError {
-            message: e.render().to_string().trim_end().to_string(),
-            code,
+        use clap::error::ErrorKind;
+        match e.kind() {
+            // --help and --version: the full text, on stdout, success.
+            ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => CliError {
+                message: e.render().to_string().trim_end().to_string(),
+                code: 0,
+            },
+            ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => CliError::input(
+                "no command given: try `limn demo`, `limn info MODEL`, or `limn --help`",
+            ),
+            // Anything else: clap's first line ("error: ..."), as one line, exit 2.
+            _ => {
+                let text = e.render().to_string();
+                let first = text.lines().next().unwrap_or("invalid arguments");
+                let first = first.strip_prefix("error: ").unwrap_or(first);
+                CliError::input(format!("{first} (see `limn --help`)"))
+            }
         }
     })?;
     let w = |r: std::io::Result<()>| {

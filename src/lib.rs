@@ -17,6 +17,7 @@ pub mod cli;
 pub mod io;
 pub mod model;
 pub mod number;
+pub mod solver;
 pub mod surface;
 #[cfg(feature = "testing")]
 pub mod testing;

@@ -10,17 +10,26 @@ fn info(path: &str, extra: &[&str]) -> Value {
         .current_dir(env!("CARGO_MANIFEST_DIR"))
         .output()
         .expect("run limn");
-    assert!(out.status.success(), "{path}: {}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{path}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     serde_json::from_slice(&out.stdout).expect("JSON output")
 }
 
 fn topo(v: &Value, key: &str) -> i64 {
-    v["topology"][key].as_i64().unwrap_or_else(|| panic!("topology.{key} in {v}"))
+    v["topology"][key]
+        .as_i64()
+        .unwrap_or_else(|| panic!("topology.{key} in {v}"))
 }
 
 #[test]
 fn newell_teapot_in_both_formats() {
-    for path in ["fixtures/bezier/teapot.bpt", "fixtures/bezier/newell_teaset/teapot"] {
+    for path in [
+        "fixtures/bezier/teapot.bpt",
+        "fixtures/bezier/newell_teaset/teapot",
+    ] {
         let v = info(path, &[]);
         assert_eq!(v["patches"], 32, "{path}");
         assert_eq!(v["degrees"]["3x3"], 32);
@@ -30,8 +39,14 @@ fn newell_teapot_in_both_formats() {
         // Body, lid, spout and handle are separate pieces: not a closed solid.
         assert_eq!(topo(&v, "components"), 4);
         assert_eq!(v["topology"]["closed"], false);
-        assert_eq!(topo(&v, "shared_edges") + topo(&v, "boundary_edges"), topo(&v, "edges"));
-        assert_eq!(v["bounding_box"]["min"], serde_json::json!([-3.0, -2.0, 0.0]));
+        assert_eq!(
+            topo(&v, "shared_edges") + topo(&v, "boundary_edges"),
+            topo(&v, "edges")
+        );
+        assert_eq!(
+            v["bounding_box"]["min"],
+            serde_json::json!([-3.0, -2.0, 0.0])
+        );
     }
 }
 
@@ -56,11 +71,16 @@ fn iges_torus_is_closed_with_genus_one_once_welded() {
     assert_eq!(v["topology"]["weld"]["mode"], "absolute");
     // The trim of the underlying surface is reported, not silently dropped.
     let w = v["warnings"].as_array().unwrap();
-    assert!(w.iter().any(|w| w["message"].as_str().unwrap().contains("not honoured")));
+    assert!(w
+        .iter()
+        .any(|w| w["message"].as_str().unwrap().contains("not honoured")));
     // The file repeats its seam control points digit for digit: exact matching closes it too,
     // and nothing needed welding.
     assert_eq!(v["topology"]["max_weld_gap"], 0.0);
-    let exact = info("fixtures/iges/occt/OCC26138_Torus.igs", &["--weld", "exact"]);
+    let exact = info(
+        "fixtures/iges/occt/OCC26138_Torus.igs",
+        &["--weld", "exact"],
+    );
     assert_eq!(exact["topology"]["weld"]["mode"], "exact");
     assert_eq!(topo(&exact, "genus"), 1);
 }
@@ -88,7 +108,12 @@ fn every_iges_fixture_loads() {
     }
     // The spring's faces on planes (entity 190) are reported as skipped.
     let spring = info("fixtures/iges/occt/bug22869_Spring.igs", &[]);
-    let msgs: Vec<&str> = spring["warnings"].as_array().unwrap().iter().map(|w| w["message"].as_str().unwrap()).collect();
+    let msgs: Vec<&str> = spring["warnings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|w| w["message"].as_str().unwrap())
+        .collect();
     assert!(msgs.iter().any(|m| m.contains("type 190")), "{msgs:?}");
 }
 
@@ -113,11 +138,17 @@ fn meshes_euler_characteristic_and_genus() {
 
 #[test]
 fn demo_runs_on_the_embedded_teapot() {
-    let out = Command::new(env!("CARGO_BIN_EXE_limn")).args(["demo", "--format", "json"]).output().unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_limn"))
+        .args(["demo", "--format", "json"])
+        .output()
+        .unwrap();
     assert!(out.status.success());
     let v: Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["patches"], 32);
-    let text = Command::new(env!("CARGO_BIN_EXE_limn")).arg("demo").output().unwrap();
+    let text = Command::new(env!("CARGO_BIN_EXE_limn"))
+        .arg("demo")
+        .output()
+        .unwrap();
     assert!(String::from_utf8_lossy(&text.stdout).contains("Bézier patches: 32"));
 }
 

@@ -22,7 +22,8 @@ pub(super) fn read(name: &str, text: &str) -> Result<Model, ReadError> {
             let what = format!("patch {k}: point {p}");
             pts.push([t.number(&what)?, t.number(&what)?, t.number(&what)?]);
         }
-        let patch = RationalPatch::polynomial([m, n], pts).map_err(|e| t.error(line, format!("patch {k}: {e}")))?;
+        let patch = RationalPatch::polynomial([m, n], pts)
+            .map_err(|e| t.error(line, format!("patch {k}: {e}")))?;
         patches.push(patch);
     }
     t.finish(&format!("the {count} patches the file declares"))?;

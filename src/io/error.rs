@@ -55,13 +55,27 @@ pub struct ReadError {
     pub message: String,
 }
 
+/// The longest message kept whole, in characters (a message quotes what it found, and a
+/// corrupt file can hold a "number" of a million characters).
+const MAX_MESSAGE: usize = 300;
+
 impl ReadError {
-    /// An error at a place in a file.
+    /// An error at a place in a file. The message is kept to one line of reasonable length.
     pub fn new(file: &str, place: Place, message: impl Into<String>) -> ReadError {
+        let message: String = message.into();
+        let mut message: String = message
+            .chars()
+            .map(|c| if c.is_control() { ' ' } else { c })
+            .collect();
+        let len = message.chars().count();
+        if len > MAX_MESSAGE {
+            let kept: String = message.chars().take(MAX_MESSAGE).collect();
+            message = format!("{kept}... (message cut, {len} characters in all)");
+        }
         ReadError {
             file: file.to_string(),
             place,
-            message: message.into(),
+            message,
         }
     }
 }

@@ -10,7 +10,8 @@
 use super::{Place, ReadError};
 use crate::model::{Format, Model, ModelPatch, PatchSource, Warning};
 use crate::number::{parse_exact, Rational};
-use crate::surface::{NurbsSurface, Point3, RationalPatch};
+use crate::surface::{NurbsError, NurbsSurface, Point3, RationalPatch};
+use std::cmp::Ordering;
 use std::collections::BTreeMap;
 
 /// One directory entry (two D records).
@@ -23,6 +24,12 @@ struct DirEntry {
     form: i64,
 }
 
+/// An exact affine map x -> R x + T: (R, T).
+type Affine = ([[Rational; 3]; 3], [Rational; 3]);
+
+/// A Bézier piece of a surface with its knot span (u, v).
+type BezierPiece = ((usize, usize), RationalPatch);
+
 struct Reader<'a> {
     name: &'a str,
     pd: char,
@@ -31,6 +38,8 @@ struct Reader<'a> {
     /// P records by sequence number: their columns 1-64.
     params: Vec<String>,
     warnings: Vec<Warning>,
+    /// Bézier control points the surfaces read so far split into.
+    bezier_points: usize,
 }
 
 fn err_line(name: &str, line: usize, msg: impl Into<String>) -> ReadError {
@@ -53,11 +62,18 @@ fn split_fields(s: &str, pd: char, rd: char) -> Result<Vec<String>, String> {
             i += 1;
         }
         if i > start && i < chars.len() && chars[i] == 'H' {
-            let n: usize = chars[start..i].iter().collect::<String>().parse().map_err(|_| "bad Hollerith length".to_string())?;
+            let n: usize = chars[start..i]
+                .iter()
+                .collect::<String>()
+                .parse()
+                .map_err(|_| "bad Hollerith length".to_string())?;
             let text_start = i + 1;
-            let end = text_start.checked_add(n).filter(|&e| e <= chars.len()).ok_or_else(|| {
-                format!("a Hollerith string of {n} characters runs past the end of the data")
-            })?;
+            let end = text_start
+                .checked_add(n)
+                .filter(|&e| e <= chars.len())
+                .ok_or_else(|| {
+                    format!("a Hollerith string of {n} characters runs past the end of the data")
+                })?;
             fields.push(chars[text_start..end].iter().collect());
             i = end;
             while i < chars.len() && chars[i] == ' ' {
@@ -67,13 +83,21 @@ fn split_fields(s: &str, pd: char, rd: char) -> Result<Vec<String>, String> {
             while i < chars.len() && chars[i] != pd && chars[i] != rd {
                 i += 1;
             }
-            fields.push(chars[start..i].iter().collect::<String>().trim().to_string());
+            fields.push(
+                chars[start..i]
+                    .iter()
+                    .collect::<String>()
+                    .trim()
+                    .to_string(),
+            );
         }
         match chars.get(i) {
             Some(c) if *c == pd => i += 1,
             Some(c) if *c == rd => return Ok(fields),
             Some(c) => return Err(format!("unexpected {c:?} after a field")),
-            None => return Err("the parameter data has no record delimiter (truncated?)".to_string()),
+            None => {
+                return Err("the parameter data has no record delimiter (truncated?)".to_string())
+            }
         }
     }
 }
@@ -119,15 +143,28 @@ pub(super) fn read(name: &str, bytes: &[u8]) -> Result<Model, ReadError> {
             'D' => d_lines.push((line_no, body)),
             'P' => params.push(chars[..64].iter().collect::<String>()),
             'T' => seen_t = true,
-            c => return Err(err_line(name, line_no, format!("unknown section letter {c:?} in column 73"))),
+            c => {
+                return Err(err_line(
+                    name,
+                    line_no,
+                    format!("unknown section letter {c:?} in column 73"),
+                ))
+            }
         }
     }
     if d_lines.is_empty() {
-        return Err(ReadError::new(name, Place::File, "no directory entry section (D records): not an IGES file, or truncated"));
+        return Err(ReadError::new(
+            name,
+            Place::File,
+            "no directory entry section (D records): not an IGES file, or truncated",
+        ));
     }
     let mut warnings = Vec::new();
     if !seen_t {
-        warnings.push(Warning { place: "file".into(), message: "no terminate (T) record: the file may be truncated".into() });
+        warnings.push(Warning {
+            place: "file".into(),
+            message: "no terminate (T) record: the file may be truncated".into(),
+        });
     }
     // Global section: delimiters and the minimum resolution (field 19).
     let gchars: Vec<char> = g.chars().collect();
@@ -146,25 +183,45 @@ pub(super) fn read(name: &str, bytes: &[u8]) -> Result<Model, ReadError> {
         split_fields(rest, pd, rd).map_err(gerr)?
     };
     // gfields[0] is G field 3; field 19 (minimum resolution) is gfields[16].
-    let resolution = gfields.get(16).and_then(|s| parse_exact(s).ok()).filter(|r| r.cmp0() == std::cmp::Ordering::Greater);
+    let resolution = gfields
+        .get(16)
+        .and_then(|s| parse_exact(s).ok())
+        .filter(|r| r.cmp0() == std::cmp::Ordering::Greater);
 
     // Directory: pairs of D records.
     if d_lines.len() % 2 != 0 {
         let (l, _) = d_lines[d_lines.len() - 1];
-        return Err(err_line(name, l, "the directory section has an odd number of records (each entry is two)"));
+        return Err(err_line(
+            name,
+            l,
+            "the directory section has an odd number of records (each entry is two)",
+        ));
     }
     let mut dir = BTreeMap::new();
     for (k, pair) in d_lines.chunks_exact(2).enumerate() {
         let seq = 2 * k + 1;
         let (line_no, first) = &pair[0];
         let (_, second) = &pair[1];
-        let field = |s: &str, n: usize| -> String { s.chars().skip(8 * n).take(8).collect::<String>().trim().to_string() };
+        let field = |s: &str, n: usize| -> String {
+            s.chars()
+                .skip(8 * n)
+                .take(8)
+                .collect::<String>()
+                .trim()
+                .to_string()
+        };
         let int = |s: &str, n: usize, what: &str| -> Result<i64, ReadError> {
             let f = field(s, n);
             if f.is_empty() {
                 return Ok(0);
             }
-            f.parse::<i64>().map_err(|_| err_line(name, *line_no, format!("directory entry {seq}: {what} is {f:?}, not an integer")))
+            f.parse::<i64>().map_err(|_| {
+                err_line(
+                    name,
+                    *line_no,
+                    format!("directory entry {seq}: {what} is {f:?}, not an integer"),
+                )
+            })
         };
         let kind = int(first, 0, "the entity type")?;
         let param_start = int(first, 1, "the parameter data pointer")?;
@@ -172,7 +229,11 @@ pub(super) fn read(name: &str, bytes: &[u8]) -> Result<Model, ReadError> {
         let param_lines = int(second, 3, "the parameter line count")?;
         let form = int(second, 4, "the form number")?;
         if param_start < 0 || param_lines < 0 {
-            return Err(err_line(name, *line_no, format!("directory entry {seq}: negative parameter pointer or count")));
+            return Err(err_line(
+                name,
+                *line_no,
+                format!("directory entry {seq}: negative parameter pointer or count"),
+            ));
         }
         dir.insert(
             seq,
@@ -185,7 +246,15 @@ pub(super) fn read(name: &str, bytes: &[u8]) -> Result<Model, ReadError> {
             },
         );
     }
-    let mut r = Reader { name, pd, rd, dir, params, warnings };
+    let mut r = Reader {
+        name,
+        pd,
+        rd,
+        dir,
+        params,
+        warnings,
+        bezier_points: 0,
+    };
     r.read_model(resolution)
 }
 
@@ -197,77 +266,120 @@ impl Reader<'_> {
 
     fn warn(&mut self, de: usize, message: String) {
         let kind = self.dir.get(&de).map_or(0, |e| e.kind);
-        self.warnings.push(Warning { place: format!("entity {kind} at directory entry {de}"), message });
+        self.warnings.push(Warning {
+            place: format!("entity {kind} at directory entry {de}"),
+            message,
+        });
     }
 
     /// The parameter fields of an entity, after its type number.
     fn fields(&self, de: usize) -> Result<Vec<String>, ReadError> {
         let e = &self.dir[&de];
         let start = e.param_start;
-        if start == 0 || start > self.params.len() || e.param_lines == 0 || start - 1 + e.param_lines > self.params.len() {
+        if e.param_lines == 0 {
+            return Err(self.entity_err(de, "the directory entry gives 0 parameter data records"));
+        }
+        // The last P record of the entity (param_lines >= 1).
+        let end = start.saturating_add(e.param_lines - 1);
+        if start == 0 || end > self.params.len() {
             return Err(self.entity_err(
                 de,
                 format!(
-                    "parameter data at P records {}..{} is outside the {} P records",
-                    start,
-                    start + e.param_lines,
+                    "parameter data at P records {start}..={end} is outside the {} P records",
                     self.params.len()
                 ),
             ));
         }
-        let data: String = self.params[start - 1..start - 1 + e.param_lines].concat();
+        let data: String = self.params[start - 1..end].concat();
         let fields = split_fields(&data, self.pd, self.rd).map_err(|m| self.entity_err(de, m))?;
         let kind: i64 = fields.first().and_then(|f| f.parse().ok()).unwrap_or(-1);
         if kind != e.kind {
-            return Err(self.entity_err(de, format!("parameter data starts with type {:?}, not {}", fields.first(), e.kind)));
+            return Err(self.entity_err(
+                de,
+                format!(
+                    "parameter data starts with type {:?}, not {}",
+                    fields.first().map_or("", String::as_str),
+                    e.kind
+                ),
+            ));
         }
         Ok(fields[1..].to_vec())
     }
 
     /// Follows a pointer to a directory entry, which must exist.
     fn pointer(&self, from: usize, value: &str, what: &str) -> Result<usize, ReadError> {
-        let p: i64 = value.trim().parse().map_err(|_| self.entity_err(from, format!("{what}: {value:?} is not a pointer")))?;
+        let p: i64 = value
+            .trim()
+            .parse()
+            .map_err(|_| self.entity_err(from, format!("{what}: {value:?} is not a pointer")))?;
         let p = p.unsigned_abs() as usize;
         if !self.dir.contains_key(&p) {
-            return Err(self.entity_err(from, format!("{what}: pointer {p} names no directory entry")));
+            return Err(self.entity_err(
+                from,
+                format!("{what}: pointer {p} names no directory entry"),
+            ));
         }
         Ok(p)
     }
 
     /// The affine map of an entity's transformation chain: x -> R x + T, exact.
-    fn transform(&self, de: usize) -> Result<Option<([[Rational; 3]; 3], [Rational; 3])>, ReadError> {
+    fn transform(&self, de: usize) -> Result<Option<Affine>, ReadError> {
         let mut current = self.dir[&de].transform;
-        let mut total: Option<([[Rational; 3]; 3], [Rational; 3])> = None;
+        let mut total: Option<Affine> = None;
         let mut depth = 0;
         while current != 0 {
             depth += 1;
             if depth > 64 {
-                return Err(self.entity_err(de, "the chain of transformation matrices is longer than 64 (a cycle?)"));
+                return Err(self.entity_err(
+                    de,
+                    "the chain of transformation matrices is longer than 64 (a cycle?)",
+                ));
             }
             let t = self.dir.get(&current).ok_or_else(|| {
-                self.entity_err(de, format!("transformation matrix pointer {current} names no directory entry"))
+                self.entity_err(
+                    de,
+                    format!("transformation matrix pointer {current} names no directory entry"),
+                )
             })?;
             if t.kind != 124 {
                 return Err(self.entity_err(de, format!("transformation matrix pointer {current} names an entity of type {}, not 124", t.kind)));
             }
             let f = self.fields(current)?;
             if f.len() < 12 {
-                return Err(self.entity_err(current, format!("a transformation matrix needs 12 numbers, found {}", f.len())));
+                return Err(self.entity_err(
+                    current,
+                    format!(
+                        "a transformation matrix needs 12 numbers, found {}",
+                        f.len()
+                    ),
+                ));
             }
             let mut v = Vec::with_capacity(12);
             for (i, s) in f[..12].iter().enumerate() {
-                v.push(parse_exact(s).map_err(|e| self.entity_err(current, format!("matrix entry {}: {e}", i + 1)))?);
+                v.push(parse_exact(s).map_err(|e| {
+                    self.entity_err(current, format!("matrix entry {}: {e}", i + 1))
+                })?);
             }
-            let r: [[Rational; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| v[4 * i + j].clone()));
+            let r: [[Rational; 3]; 3] =
+                std::array::from_fn(|i| std::array::from_fn(|j| v[4 * i + j].clone()));
             let tr: [Rational; 3] = std::array::from_fn(|i| v[4 * i + 3].clone());
             // The entity's own matrix applies first, then the one it points to.
             total = Some(match total {
                 None => (r, tr),
                 Some((r0, t0)) => {
                     let rr = std::array::from_fn(|i| {
-                        std::array::from_fn(|j| (0..3).map(|k| Rational::from(&r[i][k] * &r0[k][j])).sum::<Rational>())
+                        std::array::from_fn(|j| {
+                            (0..3)
+                                .map(|k| Rational::from(&r[i][k] * &r0[k][j]))
+                                .sum::<Rational>()
+                        })
                     });
-                    let tt = std::array::from_fn(|i| (0..3).map(|k| Rational::from(&r[i][k] * &t0[k])).sum::<Rational>() + &tr[i]);
+                    let tt = std::array::from_fn(|i| {
+                        (0..3)
+                            .map(|k| Rational::from(&r[i][k] * &t0[k]))
+                            .sum::<Rational>()
+                            + &tr[i]
+                    });
                     (rr, tt)
                 }
             });
@@ -276,16 +388,25 @@ impl Reader<'_> {
         Ok(total)
     }
 
-    fn read_surface(&mut self, de: usize) -> Result<Vec<((usize, usize), RationalPatch)>, ReadError> {
+    fn read_surface(&mut self, de: usize) -> Result<Vec<BezierPiece>, ReadError> {
         let f = self.fields(de)?;
         let num = |i: usize, what: &str| -> Result<Rational, ReadError> {
-            let s = f.get(i).ok_or_else(|| self.entity_err(de, format!("{what}: the parameter data ends early ({} fields)", f.len())))?;
+            let s = f.get(i).ok_or_else(|| {
+                self.entity_err(
+                    de,
+                    format!("{what}: the parameter data ends early ({} fields)", f.len()),
+                )
+            })?;
             parse_exact(s).map_err(|e| self.entity_err(de, format!("{what}: {e}")))
         };
         let int = |i: usize, what: &str| -> Result<usize, ReadError> {
             let q = num(i, what)?;
-            if !q.is_integer() || q < 0 || q > 100_000 {
-                return Err(self.entity_err(de, format!("{what}: {q} is not a count")));
+            if !q.is_integer() || !(0..=100_000).contains(&q) {
+                let text = f[i].trim();
+                return Err(self.entity_err(
+                    de,
+                    format!("{what}: {text:?} is not a count (a whole number 0..=100000)"),
+                ));
             }
             Ok(q.numer().to_usize().unwrap_or(0))
         };
@@ -296,7 +417,9 @@ impl Reader<'_> {
         }
         let mut i = 9;
         let mut take = |n: usize, what: &str| -> Result<Vec<Rational>, ReadError> {
-            let v = (i..i + n).map(|k| num(k, &format!("{what} {}", k - i + 1))).collect();
+            let v = (i..i + n)
+                .map(|k| num(k, &format!("{what} {}", k - i + 1)))
+                .collect();
             i += n;
             v
         };
@@ -315,15 +438,50 @@ impl Reader<'_> {
                 let p = [c[3 * k].clone(), c[3 * k + 1].clone(), c[3 * k + 2].clone()];
                 let p = match &map {
                     None => p,
-                    Some((r, t)) => std::array::from_fn(|a| (0..3).map(|b| Rational::from(&r[a][b] * &p[b])).sum::<Rational>() + &t[a]),
+                    Some((r, t)) => std::array::from_fn(|a| {
+                        (0..3)
+                            .map(|b| Rational::from(&r[a][b] * &p[b]))
+                            .sum::<Rational>()
+                            + &t[a]
+                    }),
                 };
                 points.push(p);
                 weights.push(w[k].clone());
             }
         }
-        let surface = NurbsSurface::new([m1, m2], ku, kv, [nu, nv], points, weights).map_err(|e| self.entity_err(de, e.to_string()))?;
+        // Weights and knots are named as the file counts them (1-based, u fastest).
+        if let Some((k, x)) = w
+            .iter()
+            .enumerate()
+            .find(|(_, x)| x.cmp0() != Ordering::Greater)
+        {
+            return Err(self.entity_err(
+                de,
+                format!(
+                    "weight {}: {x} is not positive (weights must be positive)",
+                    k + 1
+                ),
+            ));
+        }
+        let surface =
+            NurbsSurface::new([m1, m2], ku, kv, [nu, nv], points, weights).map_err(|e| {
+                let msg = match &e {
+                    NurbsError::Decreasing { dir, index, value } => {
+                        format!(
+                            "{dir} knot {}: {value} is less than the knot before it",
+                            index + 1
+                        )
+                    }
+                    _ => e.to_string(),
+                };
+                self.entity_err(de, msg)
+            })?;
         let dom = surface.domain();
-        if range[0] != dom[0][0] || range[1] != dom[0][1] || range[2] != dom[1][0] || range[3] != dom[1][1] {
+        if range[0] != dom[0][0]
+            || range[1] != dom[0][1]
+            || range[2] != dom[1][0]
+            || range[3] != dom[1][1]
+        {
             self.warn(
                 de,
                 format!(
@@ -333,11 +491,14 @@ impl Reader<'_> {
                 ),
             );
         }
+        super::count_bezier_points(&mut self.bezier_points, &surface)
+            .map_err(|m| self.entity_err(de, m))?;
         Ok(surface.to_bezier())
     }
 
     fn read_model(&mut self, resolution: Option<Rational>) -> Result<Model, ReadError> {
-        let entries: Vec<(usize, DirEntry)> = self.dir.iter().map(|(k, v)| (*k, v.clone())).collect();
+        let entries: Vec<(usize, DirEntry)> =
+            self.dir.iter().map(|(k, v)| (*k, v.clone())).collect();
         // Trims and faces: report what is not honoured, and check their surface pointers.
         for (de, e) in &entries {
             let (ptr_field, what) = match e.kind {
@@ -347,7 +508,10 @@ impl Reader<'_> {
                 _ => continue,
             };
             let f = self.fields(*de)?;
-            let v = f.get(ptr_field).cloned().ok_or_else(|| self.entity_err(*de, "no surface pointer"))?;
+            let v = f
+                .get(ptr_field)
+                .cloned()
+                .ok_or_else(|| self.entity_err(*de, "no surface pointer"))?;
             let s = self.pointer(*de, &v, "surface")?;
             let skind = self.dir[&s].kind;
             if skind == 128 {
@@ -365,12 +529,18 @@ impl Reader<'_> {
                     for (span, patch) in self.read_surface(*de)? {
                         model.patches.push(ModelPatch {
                             surface: patch,
-                            source: PatchSource { surface: surfaces, entity: Some(*de), span: Some(span) },
+                            source: PatchSource {
+                                surface: surfaces,
+                                entity: Some(*de),
+                                span: Some(span),
+                            },
                         });
                     }
                     surfaces += 1;
                 }
-                108 | 114 | 118 | 120 | 122 | 140 | 190..=199 => *skipped.entry(e.kind).or_default() += 1,
+                108 | 114 | 118 | 120 | 122 | 140 | 190..=199 => {
+                    *skipped.entry(e.kind).or_default() += 1
+                }
                 _ => {}
             }
             let _ = e.form;
@@ -382,7 +552,11 @@ impl Reader<'_> {
             });
         }
         if surfaces == 0 {
-            return Err(ReadError::new(self.name, Place::File, "no rational B-spline surface (entity 128) in the file"));
+            return Err(ReadError::new(
+                self.name,
+                Place::File,
+                "no rational B-spline surface (entity 128) in the file",
+            ));
         }
         model.surfaces = surfaces;
         model.warnings = std::mem::take(&mut self.warnings);

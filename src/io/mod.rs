@@ -20,7 +20,35 @@ mod text;
 pub use error::{Place, ReadError};
 
 use crate::model::{Format, Model};
+use crate::surface::NurbsSurface;
 use std::path::Path;
+
+/// The most Bézier control points the NURBS surfaces of one model may split into. The split
+/// of a surface of degree (p, q) with many knots has up to (p+1)(q+1) times the control points
+/// of the file (a 200 kB file of degree 64 would make some 18 million points of four exact
+/// rationals each), so a small file could otherwise exhaust memory.
+pub(super) const MAX_BEZIER_POINTS: usize = 4_000_000;
+
+/// Adds the Bézier control points `s.to_bezier()` will make to `total`, before the split is
+/// made; the message if the model would then have more than [`MAX_BEZIER_POINTS`].
+pub(super) fn count_bezier_points(total: &mut usize, s: &NurbsSurface) -> Result<(), String> {
+    let [p, q] = s.degree();
+    // Nonempty knot spans of the domain [t_deg, t_n].
+    let spans = |d: usize| {
+        let (k, deg, n) = (s.knots()[d], s.degree()[d], s.counts()[d]);
+        (deg..n).filter(|&i| k[i] < k[i + 1]).count()
+    };
+    let (su, sv) = (spans(0), spans(1));
+    let points = su.saturating_mul(sv).saturating_mul((p + 1) * (q + 1));
+    *total = total.saturating_add(points);
+    if *total > MAX_BEZIER_POINTS {
+        return Err(format!(
+            "the surface splits into {su} x {sv} Bézier patches of degree ({p},{q}) with {points} control points; \
+             the model would have more than the {MAX_BEZIER_POINTS} allowed"
+        ));
+    }
+    Ok(())
+}
 
 /// Reads a model file, choosing the reader by extension or, failing that, by content.
 ///
@@ -34,8 +62,12 @@ use std::path::Path;
 /// ```
 pub fn read_model(path: &Path) -> Result<Model, ReadError> {
     let name = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|e| ReadError::new(&name, Place::File, format!("cannot read: {e}")))?;
-    let ext = path.extension().and_then(|e| e.to_str()).map(|e| e.to_ascii_lowercase());
+    let bytes = std::fs::read(path)
+        .map_err(|e| ReadError::new(&name, Place::File, format!("cannot read: {e}")))?;
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(|e| e.to_ascii_lowercase());
     let format = match ext.as_deref() {
         Some("json") => Some(Format::Json),
         Some("bpt") => Some(Format::Bpt),
@@ -62,7 +94,11 @@ pub fn read_model(path: &Path) -> Result<Model, ReadError> {
 /// let bad = read_model_bytes("bad.json", br#"{"patches":[{"kind":"bezier","degree":[1,1],"points":[]}]}"#, None);
 /// assert!(bad.unwrap_err().to_string().starts_with("bad.json: patch 0"));
 /// ```
-pub fn read_model_bytes(name: &str, bytes: &[u8], format: Option<Format>) -> Result<Model, ReadError> {
+pub fn read_model_bytes(
+    name: &str,
+    bytes: &[u8],
+    format: Option<Format>,
+) -> Result<Model, ReadError> {
     if bytes.iter().all(|b| b.is_ascii_whitespace()) {
         return Err(ReadError::new(name, Place::File, "the file is empty"));
     }
@@ -81,10 +117,13 @@ pub fn read_model_bytes(name: &str, bytes: &[u8], format: Option<Format>) -> Res
         return iges::read(name, bytes);
     }
     let text = std::str::from_utf8(bytes).map_err(|e| {
+        // The line of the first bad byte: lines before it are valid UTF-8.
+        let at = e.valid_up_to();
+        let line = 1 + bytes[..at].iter().filter(|&&b| b == b'\n').count();
         ReadError::new(
             name,
-            Place::File,
-            format!("not a text file (invalid UTF-8 at byte {})", e.valid_up_to()),
+            Place::Line(line),
+            format!("not a text file (invalid UTF-8 at byte {at})"),
         )
     })?;
     match format {
@@ -118,7 +157,10 @@ fn detect(bytes: &[u8]) -> Option<Format> {
             return Some(Format::Bpt);
         }
     }
-    if text.lines().any(|l| l.trim_start().starts_with("v ") || l.trim_start().starts_with("f ")) {
+    if text
+        .lines()
+        .any(|l| l.trim_start().starts_with("v ") || l.trim_start().starts_with("f "))
+    {
         return Some(Format::Obj);
     }
     None

@@ -19,11 +19,19 @@ pub(super) fn read(name: &str, text: &str) -> Result<Model, ReadError> {
             Some("v") => {
                 let coords: Vec<&str> = words.collect();
                 if coords.len() < 3 || coords.len() > 4 {
-                    return Err(err(line, format!("a vertex needs 3 coordinates (4 with w), found {}", coords.len())));
+                    return Err(err(
+                        line,
+                        format!(
+                            "a vertex needs 3 coordinates (4 with w), found {}",
+                            coords.len()
+                        ),
+                    ));
                 }
                 let mut p = Vec::with_capacity(3);
                 for c in &coords {
-                    p.push(parse_exact(c).map_err(|e| err(line, format!("vertex coordinate: {e}")))?);
+                    p.push(
+                        parse_exact(c).map_err(|e| err(line, format!("vertex coordinate: {e}")))?,
+                    );
                 }
                 if coords.len() == 4 {
                     let w = p.pop().expect("four values");
@@ -47,7 +55,10 @@ pub(super) fn read(name: &str, text: &str) -> Result<Model, ReadError> {
                     face.push(k);
                 }
                 if face.len() < 3 {
-                    return Err(err(line, format!("a face needs at least 3 vertices, found {}", face.len())));
+                    return Err(err(
+                        line,
+                        format!("a face needs at least 3 vertices, found {}", face.len()),
+                    ));
                 }
                 face_lines.push((line, face));
             }
@@ -60,14 +71,21 @@ pub(super) fn read(name: &str, text: &str) -> Result<Model, ReadError> {
         for k in face {
             let i = if k > 0 { k - 1 } else { n + k };
             if k == 0 || i < 0 || i >= n {
-                return Err(err(line, format!("face vertex index {k} is out of range (the file has {n} vertices)")));
+                return Err(err(
+                    line,
+                    format!("face vertex index {k} is out of range (the file has {n} vertices)"),
+                ));
             }
             f.push(i as usize);
         }
         mesh.faces.push(f);
     }
     if mesh.faces.is_empty() {
-        return Err(ReadError::new(name, Place::File, "no faces: an OBJ model needs `f` lines"));
+        return Err(ReadError::new(
+            name,
+            Place::File,
+            "no faces: an OBJ model needs `f` lines",
+        ));
     }
     let mut model = Model::from_patches(Format::Obj, Vec::new());
     model.meshes.push(mesh);

@@ -5,6 +5,7 @@
 use super::text::Tokens;
 use super::ReadError;
 use crate::model::{Format, Model};
+use crate::number::Rational;
 use crate::surface::RationalPatch;
 
 pub(super) fn read(name: &str, text: &str) -> Result<Model, ReadError> {
@@ -15,7 +16,19 @@ pub(super) fn read(name: &str, text: &str) -> Result<Model, ReadError> {
         let line = t.line();
         let mut idx = [0usize; 16];
         for (p, slot) in idx.iter_mut().enumerate() {
+            if !t.at_end() && t.line() != line {
+                return Err(t.error(
+                    line,
+                    format!("patch {k}: the line has {p} vertex indices, expected 16"),
+                ));
+            }
             *slot = t.count(&format!("patch {k}: vertex index {p}"), usize::MAX)?;
+        }
+        if !t.at_end() && t.line() == line {
+            return Err(t.error(
+                line,
+                format!("patch {k}: the line has more than 16 vertex indices"),
+            ));
         }
         indices.push((line, idx));
     }
@@ -23,7 +36,24 @@ pub(super) fn read(name: &str, text: &str) -> Result<Model, ReadError> {
     let mut vertices = Vec::with_capacity(nv.min(1 << 16));
     for v in 0..nv {
         let what = format!("vertex {}", v + 1);
-        vertices.push([t.number(&what)?, t.number(&what)?, t.number(&what)?]);
+        let line = t.line();
+        let mut xyz: [Rational; 3] = Default::default();
+        for (c, slot) in xyz.iter_mut().enumerate() {
+            if !t.at_end() && t.line() != line {
+                return Err(t.error(
+                    line,
+                    format!("{what}: the line has {c} coordinates, expected 3 (x,y,z)"),
+                ));
+            }
+            *slot = t.number(&what)?;
+        }
+        if !t.at_end() && t.line() == line {
+            return Err(t.error(
+                line,
+                format!("{what}: the line has more than 3 coordinates (x,y,z)"),
+            ));
+        }
+        vertices.push(xyz);
     }
     t.finish(&format!("the {nv} vertices the file declares"))?;
     let mut patches = Vec::with_capacity(count);
@@ -38,7 +68,10 @@ pub(super) fn read(name: &str, text: &str) -> Result<Model, ReadError> {
             }
             pts.push(vertices[i - 1].clone());
         }
-        patches.push(RationalPatch::polynomial([3, 3], pts).map_err(|e| t.error(line, format!("patch {k}: {e}")))?);
+        patches.push(
+            RationalPatch::polynomial([3, 3], pts)
+                .map_err(|e| t.error(line, format!("patch {k}: {e}")))?,
+        );
     }
     Ok(Model::from_patches(Format::Teaset, patches))
 }

@@ -23,7 +23,17 @@ impl<'a> Tokens<'a> {
             }
         }
         let last_line = text.lines().count().max(1);
-        Tokens { name, tokens, pos: 0, last_line }
+        Tokens {
+            name,
+            tokens,
+            pos: 0,
+            last_line,
+        }
+    }
+
+    /// Whether every token has been read.
+    pub(super) fn at_end(&self) -> bool {
+        self.pos >= self.tokens.len()
     }
 
     /// The line of the next token (or the last line, at the end).
@@ -37,7 +47,10 @@ impl<'a> Tokens<'a> {
 
     fn next(&mut self, what: &str) -> Result<(usize, &'a str), ReadError> {
         let t = self.tokens.get(self.pos).copied().ok_or_else(|| {
-            self.error(self.last_line, format!("the file ends where {what} was expected (truncated?)"))
+            self.error(
+                self.last_line,
+                format!("the file ends where {what} was expected (truncated?)"),
+            )
         })?;
         self.pos += 1;
         Ok(t)
@@ -46,9 +59,12 @@ impl<'a> Tokens<'a> {
     /// The next token as a count (a nonnegative integer at most `max`).
     pub(super) fn count(&mut self, what: &str, max: usize) -> Result<usize, ReadError> {
         let (line, t) = self.next(what)?;
-        let n: usize = t
-            .parse()
-            .map_err(|_| self.error(line, format!("{what}: expected a whole number, found {t:?}")))?;
+        let n: usize = t.parse().map_err(|_| {
+            self.error(
+                line,
+                format!("{what}: expected a whole number, found {t:?}"),
+            )
+        })?;
         if n > max {
             return Err(self.error(line, format!("{what}: {n} is more than the {max} allowed")));
         }

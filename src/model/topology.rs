@@ -122,8 +122,18 @@ fn gap(a: &[f64; 3], b: &[f64; 3]) -> f64 {
 }
 
 impl Welder {
+    /// The grid cell of a point; far points (|x / tol| beyond 2^62) share the extreme cells,
+    /// which only costs comparisons, never correctness (points are compared exactly after).
     fn cell(&self, p: &[f64; 3], tol: f64) -> [i64; 3] {
-        p.map(|x| (x / tol).floor() as i64)
+        const LIMIT: f64 = 4.611686018427388e18; // 2^62: cell ± 1 cannot overflow
+        p.map(|x| {
+            let c = (x / tol).floor();
+            if c.is_nan() {
+                0
+            } else {
+                c.clamp(-LIMIT, LIMIT) as i64
+            }
+        })
     }
 
     fn vertex(&mut self, p: &Point3) -> usize {

@@ -59,7 +59,6 @@ impl Sign {
     pub fn is_known(self) -> bool {
         self != Sign::Unknown
     }
-
 }
 
 impl std::ops::Mul for Sign {
@@ -82,7 +81,6 @@ impl std::ops::Mul for Sign {
             _ => Negative,
         }
     }
-
 }
 
 impl std::ops::Neg for Sign {
@@ -96,7 +94,6 @@ impl std::ops::Neg for Sign {
             s => s,
         }
     }
-
 }
 
 impl Sign {

@@ -128,25 +128,20 @@ fn insert_knot(p: usize, knots: &mut Vec<Rational>, points: &mut Vec<Hom>, u: &R
     while k + 1 < n && knots[k + 1] <= *u {
         k += 1;
     }
-    let mut new_points = Vec::with_capacity(n + 1);
-    for i in 0..=n {
-        if i + p <= k {
-            new_points.push(points[i].clone());
-        } else if i > k {
-            new_points.push(points[i - 1].clone());
-        } else {
-            // alpha_i = (u - t_i) / (t_{i+p} - t_i), for k - p + 1 <= i <= k.
+    // Only Q_{k-p+1..=k} are new: Q_i = α_i P_i + (1 − α_i) P_{i−1},
+    // α_i = (u − t_i) / (t_{i+p} − t_i). The rest of the polygon is moved, not copied.
+    let fresh: Vec<Hom> = (k + 1 - p..=k)
+        .map(|i| {
             let den = Rational::from(&knots[i + p] - &knots[i]);
             let alpha = Rational::from(u - &knots[i]) / den;
             let beta = Rational::from(1 - &alpha);
-            let q: Hom = std::array::from_fn(|c| {
+            std::array::from_fn(|c| {
                 Rational::from(&alpha * &points[i][c]) + Rational::from(&beta * &points[i - 1][c])
-            });
-            new_points.push(q);
-        }
-    }
+            })
+        })
+        .collect();
+    points.splice(k + 1 - p..k, fresh);
     knots.insert(k + 1, u.clone());
-    *points = new_points;
 }
 
 /// Splits a curve into Bézier segments: for each span [a, b] of the domain with a < b, the

@@ -56,12 +56,7 @@ fn affine2(arc: &Arc2, a: &Rational, b: &Rational, s: &Rational) -> Arc2 {
     let pts = arc
         .0
         .iter()
-        .map(|p| {
-            [
-                a + Rational::from(s * &p[0]),
-                b + Rational::from(s * &p[1]),
-            ]
-        })
+        .map(|p| [a + Rational::from(s * &p[0]), b + Rational::from(s * &p[1])])
         .collect();
     (pts, arc.1.clone())
 }

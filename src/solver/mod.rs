@@ -1,0 +1,10 @@
+//! Layer 4: the solver. Exact dyadic boxes, the precision controller, certified root
+//! isolation; every analysis is built on these.
+
+pub mod dyadic;
+pub mod precision;
+pub mod univariate;
+
+pub use dyadic::{Dyadic, DyadicBox};
+pub use precision::{Escalations, Ladder, Level, Question};
+pub use univariate::{isolate_roots, refine_root, Root, Roots};
