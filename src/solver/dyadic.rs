@@ -7,10 +7,24 @@ pub const MAX_DEPTH: u32 = 60;
 
 /// The exact dyadic number `num / 2^exp` with `0 <= num <= 2^exp`, `exp <= MAX_DEPTH`,
 /// kept in lowest terms (num odd, or exp = 0).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct Dyadic {
     num: u64,
     exp: u32,
+}
+
+impl Ord for Dyadic {
+    /// By value (the representation is reduced, so equality of fields is equality of values).
+    fn cmp(&self, other: &Self) -> std::cmp::Ordering {
+        let e = self.exp.max(other.exp);
+        self.at(e).cmp(&other.at(e))
+    }
+}
+
+impl PartialOrd for Dyadic {
+    fn partial_cmp(&self, other: &Self) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(other))
+    }
 }
 
 impl Dyadic {
@@ -153,6 +167,9 @@ mod tests {
             d = d.midpoint(Dyadic::new(1, MAX_DEPTH.min(1))).unwrap_or(d);
         }
         assert!(d.exp() <= MAX_DEPTH);
+        assert!(Dyadic::new(1, 1) > Dyadic::new(1, 2));
+        assert!(Dyadic::new(3, 2) > Dyadic::new(1, 1));
+        assert!(Dyadic::ZERO < Dyadic::new(1, MAX_DEPTH));
         let deep = Dyadic::new(1, MAX_DEPTH);
         assert!(Dyadic::ZERO.midpoint(deep).is_none());
     }

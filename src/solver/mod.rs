@@ -1,10 +1,12 @@
 //! Layer 4: the solver. Exact dyadic boxes, the precision controller, certified root
 //! isolation; every analysis is built on these.
 
+pub mod curve2;
 pub mod dyadic;
 pub mod precision;
 pub mod univariate;
 
+pub use curve2::{solve_curve, CrossingId, CurveOptions, CurveTopology};
 pub use dyadic::{Dyadic, DyadicBox};
 pub use precision::{Escalations, Ladder, Level, Question};
-pub use univariate::{isolate_roots, refine_root, Root, Roots};
+pub use univariate::{isolate_roots, isolate_roots_in, refine_root, Root, Roots};

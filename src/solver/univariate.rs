@@ -126,7 +126,26 @@ pub fn isolate_roots(
     max_depth: u32,
     stats: &mut Escalations,
 ) -> Roots {
+    isolate_roots_in(p, Dyadic::ZERO, Dyadic::ONE, ladder, max_depth, stats)
+}
+
+/// Isolates the roots of `p` in `[lo, hi]` ⊂ [0, 1] (the same guarantees as
+/// [`isolate_roots`]; intervals are dyadic subintervals of `[lo, hi]`, in the coordinates of
+/// `p`). `identically_zero` is set when `p` vanishes on the whole of `[lo, hi]` (then `p` is
+/// the zero polynomial).
+///
+/// # Panics
+/// If `p` does not have exactly one variable, or `lo >= hi`.
+pub fn isolate_roots_in(
+    p: &Bernstein<Rational>,
+    lo: Dyadic,
+    hi: Dyadic,
+    ladder: &Ladder,
+    max_depth: u32,
+    stats: &mut Escalations,
+) -> Roots {
     assert_eq!(p.nvars(), 1, "univariate");
+    assert!(lo < hi, "empty interval");
     let mut out = Roots::default();
     if p.is_zero() {
         out.identically_zero = true;
@@ -134,14 +153,23 @@ pub fn isolate_roots(
     }
     let max_depth = max_depth.min(MAX_DEPTH);
     let n = p.degrees()[0];
-    if p.coeffs()[0].sign().is_zero() {
-        out.roots.push(Root::At { t: Dyadic::ZERO });
+    for t in [lo, hi] {
+        let s = match ladder.decide(&PointSign { p, t: vec![t] }, stats).0 {
+            Some(s) => s,
+            None => Sign::Unknown,
+        };
+        if s.is_zero() {
+            out.roots.push(Root::At { t });
+        }
     }
-    if p.coeffs()[n].sign().is_zero() {
-        out.roots.push(Root::At { t: Dyadic::ONE });
-    }
-    let mut stack: Vec<(Dyadic, Dyadic, u32, Bernstein<Interval>)> =
-        vec![(Dyadic::ZERO, Dyadic::ONE, 0, p.convert(Precision::F64))];
+    let start: Bernstein<Interval> = if (lo, hi) == (Dyadic::ZERO, Dyadic::ONE) {
+        p.convert(Precision::F64)
+    } else {
+        // Restricted exactly, then enclosed: data derived from the exact input.
+        p.restrict(0, &lo.to_rational(), &hi.to_rational())
+            .convert(Precision::F64)
+    };
+    let mut stack: Vec<(Dyadic, Dyadic, u32, Bernstein<Interval>)> = vec![(lo, hi, 0, start)];
     while let Some((lo, hi, depth, coeffs)) = stack.pop() {
         let mut signs: Vec<Sign> = coeffs.coeffs().iter().map(|c| c.sign()).collect();
         if signs.iter().any(|s| !s.is_known()) {

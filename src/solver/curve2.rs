@@ -1,0 +1,833 @@
+//! Certified topology of a plane algebraic curve `g(u, v) = 0` on the unit square.
+//!
+//! Subdivision with exclusion (all Bernstein coefficients of one strict sign) and a
+//! monotonicity criterion: where `∂g/∂m` has a strict sign on a box, every line across the
+//! box in direction m meets the curve at most once, so the curve in the box is a union of
+//! graphs over the other variable, each determined by the roots of g on the box edges
+//! (`proofs/curve-topology.md`). Roots on edges are isolated once per *atomic segment* (the
+//! pieces into which the corners of all leaf boxes cut a grid line), so neighbouring boxes of
+//! any sizes name the same crossing identically. What cannot be decided within the budget
+//! (near a singular point, where both partial derivatives vanish on the curve) is reported
+//! with its box, never guessed.
+
+use super::dyadic::{Dyadic, DyadicBox};
+use super::precision::{Escalations, Ladder, Question};
+use super::univariate::{isolate_roots_in, refine_root, PointSign, Root};
+use crate::bernstein::Bernstein;
+use crate::number::{Certified, Interval, Number, Precision, Rational, Sign};
+use std::collections::{BTreeMap, BTreeSet};
+
+/// Budgets and precision policy of the curve solver.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct CurveOptions {
+    /// The precision ladder for undecided signs.
+    pub ladder: Ladder,
+    /// The deepest subdivision of a box (the box side is 2^-depth).
+    pub max_depth: u32,
+    /// The most boxes examined.
+    pub max_boxes: usize,
+    /// Crossing intervals are refined to at most this width in parameter space.
+    pub refine_width: f64,
+}
+
+impl Default for CurveOptions {
+    fn default() -> Self {
+        CurveOptions {
+            ladder: Ladder::default(),
+            max_depth: 24,
+            max_boxes: 200_000,
+            refine_width: 1e-9,
+        }
+    }
+}
+
+/// Where the curve meets a box edge; equal for every box that shares the point.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum CrossingId {
+    /// Exactly at a dyadic point `(u, v)`.
+    Exact {
+        /// u.
+        u: Dyadic,
+        /// v.
+        v: Dyadic,
+    },
+    /// The k-th root of g, counted from the low end, inside the open atomic segment
+    /// `s ∈ (s0, s1)` of the grid line where variable `fixed` equals `c`.
+    Segment {
+        /// The variable held fixed on the line (0: u = c, 1: v = c).
+        fixed: usize,
+        /// Its value.
+        c: Dyadic,
+        /// Segment start along the other variable.
+        s0: Dyadic,
+        /// Segment end.
+        s1: Dyadic,
+        /// Root index within the segment.
+        k: usize,
+    },
+}
+
+/// A piece of the curve inside one box, between two crossings.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct Arc {
+    /// One end.
+    pub from: CrossingId,
+    /// The other end.
+    pub to: CrossingId,
+    /// The box that contains it.
+    #[serde(rename = "box")]
+    pub cell: DyadicBox,
+    /// Why it is a single arc: "graph over v" (g monotone in u), "graph over u", or
+    /// "on edge" (g vanishes identically on this box edge segment).
+    pub reason: &'static str,
+}
+
+/// A region whose topology was not decided.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct Unresolved {
+    /// The box.
+    #[serde(rename = "box")]
+    pub cell: DyadicBox,
+    /// Why.
+    pub reason: String,
+}
+
+/// A connected component of the curve in the square: an ordered chain of crossings.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct Branch {
+    /// The crossings in order.
+    pub crossings: Vec<CrossingId>,
+    /// A closed loop (the last crossing joins the first).
+    pub closed: bool,
+    /// Both ends (if open) lie on the boundary of the square, not at an unresolved region.
+    pub complete: bool,
+}
+
+/// The certified topology of `g = 0` on [0,1]^2.
+#[derive(Clone, Debug, Default, serde::Serialize)]
+pub struct CurveTopology {
+    /// g is the zero polynomial: every point is on the curve.
+    pub identically_zero: bool,
+    /// The components.
+    pub branches: Vec<Branch>,
+    /// The arcs (one per box and component piece).
+    pub arcs: Vec<Arc>,
+    /// Where each crossing is: a box `[lo, hi]` in (u, v) containing it (a point if exact).
+    pub locations: BTreeMap<CrossingId, [[f64; 2]; 2]>,
+    /// Undecided regions.
+    pub unresolved: Vec<Unresolved>,
+    /// Boxes examined.
+    pub boxes: usize,
+    /// Sign questions by the level that settled them.
+    pub escalations: Escalations,
+}
+
+impl CurveTopology {
+    /// Whether the whole square was decided.
+    pub fn is_certified(&self) -> bool {
+        self.unresolved.is_empty()
+    }
+
+    /// A representative (u, v) of a crossing (the centre of its location box).
+    pub fn point(&self, id: &CrossingId) -> [f64; 2] {
+        let [lo, hi] = self.locations[id];
+        [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])]
+    }
+}
+
+/// How a leaf box was settled.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Leaf {
+    Excluded,
+    /// g strictly monotone along variable `m`.
+    Graph {
+        m: usize,
+    },
+    Unresolved(&'static str),
+}
+
+/// The signs of the Bernstein coefficients of `p` restricted to a box, when all are known.
+struct BoxSigns<'a> {
+    p: &'a Bernstein<Rational>,
+    cell: DyadicBox,
+}
+
+impl Question for BoxSigns<'_> {
+    type Answer = Sign;
+    fn answer_in<N: Certified>(&self, prec: Precision) -> Option<Sign> {
+        let q: Bernstein<N> = self.p.convert(prec);
+        let lo: Vec<N> = self.cell.lo.iter().map(|d| d.to_number(prec)).collect();
+        let hi: Vec<N> = self.cell.hi.iter().map(|d| d.to_number(prec)).collect();
+        let r = q.restrict_box(&lo, &hi);
+        let signs: Vec<Sign> = r.coeffs().iter().map(|c| c.sign()).collect();
+        if signs.iter().any(|s| !s.is_known()) {
+            return None;
+        }
+        // Strict common sign, or Unknown meaning "not of one strict sign" (a decided answer).
+        Some(match Sign::common(signs) {
+            s @ (Sign::Positive | Sign::Negative) => s,
+            _ => Sign::Unknown,
+        })
+    }
+}
+
+/// The strict sign of `p` on the box if its coefficients prove one, else `Unknown`.
+/// `fast` are the f64-interval coefficients carried down the subdivision.
+fn strict_sign(
+    fast: &Bernstein<Interval>,
+    exact: &Bernstein<Rational>,
+    cell: DyadicBox,
+    ladder: &Ladder,
+    stats: &mut Escalations,
+) -> Sign {
+    let mut pos = false;
+    let mut neg = false;
+    let mut unknown = false;
+    for c in fast.coeffs() {
+        match c.sign() {
+            Sign::Positive => pos = true,
+            Sign::Negative => neg = true,
+            Sign::Zero => {
+                // A zero coefficient: not strictly signed by this test.
+                pos = true;
+                neg = true;
+            }
+            Sign::Unknown => unknown = true,
+        }
+        if pos && neg {
+            return Sign::Unknown;
+        }
+    }
+    if !unknown {
+        stats.record(Some(super::precision::Level::F64));
+        return if pos { Sign::Positive } else { Sign::Negative };
+    }
+    // Only one strict sign seen and some undecided coefficients: recompute from exact input.
+    ladder
+        .escalate(&BoxSigns { p: exact, cell }, stats)
+        .0
+        .unwrap_or(Sign::Unknown)
+}
+
+/// The polynomial g restricted to the grid line where variable `fixed` is `c`, as a
+/// univariate polynomial in the other variable on [0, 1] (exact).
+fn line_polynomial(g: &Bernstein<Rational>, fixed: usize, c: Dyadic) -> Bernstein<Rational> {
+    let cq = c.to_rational();
+    let r = g.restrict(fixed, &cq, &cq);
+    // All coefficients along `fixed` are now equal: keep index 0 there.
+    let [m, n] = [g.degrees()[0], g.degrees()[1]];
+    let coeffs: Vec<Rational> = if fixed == 0 {
+        (0..=n).map(|j| r.coeff(&[0, j]).clone()).collect()
+    } else {
+        (0..=m).map(|i| r.coeff(&[i, 0]).clone()).collect()
+    };
+    Bernstein::new(&[coeffs.len() - 1], coeffs).expect("one variable")
+}
+
+/// What g does on one atomic segment of a grid line.
+#[derive(Clone, Debug)]
+enum SegmentRoots {
+    /// Isolated roots strictly inside, in order.
+    Roots(Vec<Root>),
+    /// g vanishes on the whole segment.
+    Zero,
+    /// Not decided (a multiple root).
+    Unresolved,
+}
+
+/// Lazily computed, shared knowledge about grid lines: breakpoints, point signs, segment roots.
+struct Lines<'a> {
+    g: &'a Bernstein<Rational>,
+    opts: &'a CurveOptions,
+    breakpoints: BTreeMap<(usize, Dyadic), BTreeSet<Dyadic>>,
+    polys: BTreeMap<(usize, Dyadic), Bernstein<Rational>>,
+    point_signs: BTreeMap<(Dyadic, Dyadic), Sign>,
+    segments: BTreeMap<(usize, Dyadic, Dyadic, Dyadic), SegmentRoots>,
+    stats: Escalations,
+}
+
+/// The point with `fixed` = c and the other variable = s, as (u, v).
+fn uv(fixed: usize, c: Dyadic, s: Dyadic) -> (Dyadic, Dyadic) {
+    if fixed == 0 {
+        (c, s)
+    } else {
+        (s, c)
+    }
+}
+
+impl<'a> Lines<'a> {
+    fn poly(&mut self, fixed: usize, c: Dyadic) -> &Bernstein<Rational> {
+        let g = self.g;
+        self.polys
+            .entry((fixed, c))
+            .or_insert_with(|| line_polynomial(g, fixed, c))
+    }
+
+    fn sign_at(&mut self, u: Dyadic, v: Dyadic) -> Sign {
+        if let Some(s) = self.point_signs.get(&(u, v)) {
+            return *s;
+        }
+        let s = self
+            .opts
+            .ladder
+            .decide(
+                &PointSign {
+                    p: self.g,
+                    t: vec![u, v],
+                },
+                &mut self.stats,
+            )
+            .0
+            .unwrap_or(Sign::Unknown);
+        self.point_signs.insert((u, v), s);
+        s
+    }
+
+    /// The breakpoints of line (fixed, c) within [s0, s1], both included.
+    fn cuts(&self, fixed: usize, c: Dyadic, s0: Dyadic, s1: Dyadic) -> Vec<Dyadic> {
+        let mut v: Vec<Dyadic> = self
+            .breakpoints
+            .get(&(fixed, c))
+            .map_or_else(Vec::new, |b| b.range(s0..=s1).copied().collect());
+        if v.first() != Some(&s0) {
+            v.insert(0, s0);
+        }
+        if v.last() != Some(&s1) {
+            v.push(s1);
+        }
+        v
+    }
+
+    fn segment(&mut self, fixed: usize, c: Dyadic, s0: Dyadic, s1: Dyadic) -> SegmentRoots {
+        if let Some(r) = self.segments.get(&(fixed, c, s0, s1)) {
+            return r.clone();
+        }
+        let depth = self.opts.max_depth + 16;
+        let ladder = self.opts.ladder;
+        let p = self.poly(fixed, c).clone();
+        let mut stats = Escalations::default();
+        let roots = isolate_roots_in(&p, s0, s1, &ladder, depth, &mut stats);
+        self.stats.merge(&stats);
+        let r = if roots.identically_zero {
+            SegmentRoots::Zero
+        } else if !roots.unresolved.is_empty() {
+            SegmentRoots::Unresolved
+        } else {
+            // Roots at the segment's ends are breakpoint zeros, reported as exact points.
+            let inside = roots
+                .roots
+                .into_iter()
+                .filter(|r| !matches!(r, Root::At { t } if *t == s0 || *t == s1))
+                .collect();
+            SegmentRoots::Roots(inside)
+        };
+        self.segments.insert((fixed, c, s0, s1), r.clone());
+        r
+    }
+}
+
+/// One thing that happens along the o-axis of a graph box: a root of g on one of the two
+/// m-edges, or a segment of an m-edge on which g vanishes.
+#[derive(Clone, Debug)]
+struct Event {
+    lo: Dyadic,
+    hi: Dyadic,
+    /// 0: on the low m-edge, 1: on the high m-edge.
+    side: usize,
+    id: CrossingId,
+    /// g ≡ 0 on [lo, hi] of this edge (an arc along the edge).
+    zero: bool,
+}
+
+/// Solves `g = 0` on the unit square: certified topology (`proofs/curve-topology.md`).
+///
+/// # Panics
+/// If `g` is not bivariate.
+pub fn solve_curve(g: &Bernstein<Rational>, opts: &CurveOptions) -> CurveTopology {
+    assert_eq!(g.nvars(), 2, "bivariate");
+    let mut out = CurveTopology::default();
+    if g.is_zero() {
+        out.identically_zero = true;
+        return out;
+    }
+    let gu = g.deriv(0);
+    let gv = g.deriv(1);
+    let mut stats = Escalations::default();
+
+    // Phase 1: subdivide until every box is excluded, monotone, or out of budget.
+    let mut leaves: Vec<(DyadicBox, Leaf)> = Vec::new();
+    let mut stack: Vec<(DyadicBox, u32, Bernstein<Interval>)> =
+        vec![(DyadicBox::UNIT, 0, g.convert(Precision::F64))];
+    while let Some((cell, depth, coeffs)) = stack.pop() {
+        out.boxes += 1;
+        if strict_sign(&coeffs, g, cell, &opts.ladder, &mut stats).is_known() {
+            leaves.push((cell, Leaf::Excluded));
+            continue;
+        }
+        let mono = [(0, &gu), (1, &gv)].into_iter().find(|(axis, exact)| {
+            strict_sign(&coeffs.deriv(*axis), exact, cell, &opts.ladder, &mut stats).is_known()
+        });
+        if let Some((m, _)) = mono {
+            leaves.push((cell, Leaf::Graph { m }));
+            continue;
+        }
+        let children = (depth < opts.max_depth && out.boxes + stack.len() < opts.max_boxes)
+            .then(|| cell.split(0))
+            .flatten()
+            .and_then(|(a, b)| Some((a.split(1)?, b.split(1)?)));
+        let Some(((aa, ab), (ba, bb))) = children else {
+            leaves.push((cell, Leaf::Unresolved("no direction in which g is monotone within the depth budget: a singular point of the curve, or a critical point of g very close to it")));
+            continue;
+        };
+        let (left, right) = coeffs.subdivide_half(0);
+        let (ll, lr) = left.subdivide_half(1);
+        let (rl, rr) = right.subdivide_half(1);
+        // Pushed in reverse so that boxes are examined in a fixed order (deterministic output).
+        stack.push((bb, depth + 1, rr));
+        stack.push((ba, depth + 1, rl));
+        stack.push((ab, depth + 1, lr));
+        stack.push((aa, depth + 1, ll));
+    }
+
+    // Phase 2: atomic segments. Every leaf's corners cut the grid lines its edges lie on.
+    let mut lines = Lines {
+        g,
+        opts,
+        breakpoints: BTreeMap::new(),
+        polys: BTreeMap::new(),
+        point_signs: BTreeMap::new(),
+        segments: BTreeMap::new(),
+        stats: Escalations::default(),
+    };
+    for (cell, _) in &leaves {
+        for fixed in 0..2 {
+            let o = 1 - fixed;
+            for c in [cell.lo[fixed], cell.hi[fixed]] {
+                let set = lines.breakpoints.entry((fixed, c)).or_default();
+                set.insert(cell.lo[o]);
+                set.insert(cell.hi[o]);
+            }
+        }
+    }
+
+    // Phase 3: the arcs of each monotone box.
+    let mut arcs: Vec<Arc> = Vec::new();
+    for (cell, leaf) in &leaves {
+        match *leaf {
+            Leaf::Excluded => {}
+            Leaf::Unresolved(reason) => out.unresolved.push(Unresolved {
+                cell: *cell,
+                reason: reason.to_string(),
+            }),
+            Leaf::Graph { m } => match graph_box_arcs(&mut lines, *cell, m) {
+                Ok(mut a) => arcs.append(&mut a),
+                Err(reason) => out.unresolved.push(Unresolved {
+                    cell: *cell,
+                    reason,
+                }),
+            },
+        }
+    }
+    // Arcs along an edge are found from both sides: keep one.
+    let mut seen = BTreeSet::new();
+    arcs.retain(|a| a.reason != "on edge" || seen.insert((a.from.min(a.to), a.from.max(a.to))));
+
+    // Phase 4: locations of crossings, refined.
+    for a in &arcs {
+        for id in [a.from, a.to] {
+            if let std::collections::btree_map::Entry::Vacant(slot) = out.locations.entry(id) {
+                slot.insert(locate(&mut lines, id));
+            }
+        }
+    }
+    stats.merge(&lines.stats);
+    out.escalations = stats;
+
+    // Phase 5: chain arcs into branches.
+    out.branches = chain(&arcs);
+    out.arcs = arcs;
+    out
+}
+
+/// Where a crossing is, refined to `refine_width`.
+fn locate(lines: &mut Lines, id: CrossingId) -> [[f64; 2]; 2] {
+    match id {
+        CrossingId::Exact { u, v } => {
+            let p = [u.to_f64(), v.to_f64()];
+            [p, p]
+        }
+        CrossingId::Segment {
+            fixed,
+            c,
+            s0,
+            s1,
+            k,
+        } => {
+            let (lo, hi) = match lines.segment(fixed, c, s0, s1) {
+                SegmentRoots::Roots(r) if k < r.len() => {
+                    let p = lines.poly(fixed, c).clone();
+                    let mut stats = Escalations::default();
+                    let fine = refine_root(
+                        &p,
+                        r[k],
+                        lines.opts.refine_width,
+                        &lines.opts.ladder,
+                        &mut stats,
+                    );
+                    lines.stats.merge(&stats);
+                    (fine.lo().to_f64(), fine.hi().to_f64())
+                }
+                _ => (s0.to_f64(), s1.to_f64()),
+            };
+            let cf = c.to_f64();
+            if fixed == 0 {
+                [[cf, lo], [cf, hi]]
+            } else {
+                [[lo, cf], [hi, cf]]
+            }
+        }
+    }
+}
+
+/// The events on one m-edge (the line where m = c) over the box's o-range.
+fn edge_events(
+    lines: &mut Lines,
+    m: usize,
+    c: Dyadic,
+    side: usize,
+    o_lo: Dyadic,
+    o_hi: Dyadic,
+) -> Result<Vec<Event>, String> {
+    let cuts = lines.cuts(m, c, o_lo, o_hi);
+    let mut events = Vec::new();
+    for (i, &s) in cuts.iter().enumerate() {
+        let (u, v) = uv(m, c, s);
+        match lines.sign_at(u, v) {
+            Sign::Zero => events.push(Event {
+                lo: s,
+                hi: s,
+                side,
+                id: CrossingId::Exact { u, v },
+                zero: false,
+            }),
+            Sign::Unknown => return Err("the sign of g at a box corner was not decided".into()),
+            _ => {}
+        }
+        if let Some(&s1) = cuts.get(i + 1) {
+            match lines.segment(m, c, s, s1) {
+                SegmentRoots::Zero => events.push(Event { lo: s, hi: s1, side, id: CrossingId::Exact { u, v }, zero: true }),
+                SegmentRoots::Unresolved => return Err("a multiple root of g on a box edge (the curve is tangent to the edge) was not isolated".into()),
+                SegmentRoots::Roots(roots) => {
+                    for (k, r) in roots.iter().enumerate() {
+                        let id = match *r {
+                            Root::At { t } => {
+                                let (u, v) = uv(m, c, t);
+                                CrossingId::Exact { u, v }
+                            }
+                            Root::Between { .. } => CrossingId::Segment { fixed: m, c, s0: s, s1, k },
+                        };
+                        events.push(Event { lo: r.lo(), hi: r.hi(), side, id, zero: false });
+                    }
+                }
+            }
+        }
+    }
+    // A zero segment's end points are recorded as zero breakpoints too: drop those duplicates.
+    let zero_ranges: Vec<(Dyadic, Dyadic)> = events
+        .iter()
+        .filter(|e| e.zero)
+        .map(|e| (e.lo, e.hi))
+        .collect();
+    events.retain(|e| {
+        e.zero
+            || !zero_ranges
+                .iter()
+                .any(|&(a, b)| e.lo == e.hi && (e.lo == a || e.lo == b))
+    });
+    Ok(events)
+}
+
+/// The single crossing on an o-edge (the line o = c, m over [m_lo, m_hi]) of a box where g is
+/// strictly monotone along m, given that the curve meets it (the signs at its ends differ or
+/// one is zero).
+fn o_edge_crossing(
+    lines: &mut Lines,
+    m: usize,
+    o_c: Dyadic,
+    m_lo: Dyadic,
+    m_hi: Dyadic,
+) -> Result<CrossingId, String> {
+    let o = 1 - m;
+    let cuts = lines.cuts(o, o_c, m_lo, m_hi);
+    let mut prev: Option<(Dyadic, Sign)> = None;
+    for &s in &cuts {
+        let (u, v) = uv(o, o_c, s);
+        let sg = lines.sign_at(u, v);
+        match sg {
+            Sign::Zero => return Ok(CrossingId::Exact { u, v }),
+            Sign::Unknown => return Err("the sign of g at a box corner was not decided".into()),
+            _ => {}
+        }
+        if let Some((s_prev, sp)) = prev {
+            if sp != sg {
+                return Ok(CrossingId::Segment {
+                    fixed: o,
+                    c: o_c,
+                    s0: s_prev,
+                    s1: s,
+                    k: 0,
+                });
+            }
+        }
+        prev = Some((s, sg));
+    }
+    Err("internal: no sign change on a box edge the curve crosses".into())
+}
+
+/// The arcs in a box where g is strictly monotone along `m` (a graph over the other variable).
+fn graph_box_arcs(lines: &mut Lines, cell: DyadicBox, m: usize) -> Result<Vec<Arc>, String> {
+    let o = 1 - m;
+    let (o_lo, o_hi) = (cell.lo[o], cell.hi[o]);
+    let reason = if m == 0 {
+        "graph over v"
+    } else {
+        "graph over u"
+    };
+    let mut events = edge_events(lines, m, cell.lo[m], 0, o_lo, o_hi)?;
+    events.extend(edge_events(lines, m, cell.hi[m], 1, o_lo, o_hi)?);
+    // Separate the events: they may touch only where both are open root intervals (whose
+    // ends are roots of neither function); otherwise the gap between them must be nonempty.
+    let is_open = |e: &Event| !e.zero && e.lo < e.hi;
+    let conflict =
+        |x: &Event, y: &Event| x.hi > y.lo || (x.hi == y.lo && !(is_open(x) && is_open(y)));
+    for _ in 0..64 {
+        events.sort_by_key(|e| (e.lo, e.hi));
+        let Some(i) = (1..events.len()).find(|&i| conflict(&events[i - 1], &events[i])) else {
+            break;
+        };
+        let mut refined = false;
+        for j in [i - 1, i] {
+            let e = &events[j];
+            if let (CrossingId::Segment { fixed, c, .. }, true) = (e.id, is_open(e)) {
+                let p = lines.poly(fixed, c).clone();
+                let w = 0.5 * (e.hi.to_f64() - e.lo.to_f64());
+                let mut stats = Escalations::default();
+                let r = refine_root(
+                    &p,
+                    Root::Between { lo: e.lo, hi: e.hi },
+                    w,
+                    &lines.opts.ladder,
+                    &mut stats,
+                );
+                lines.stats.merge(&stats);
+                if (r.lo(), r.hi()) != (e.lo, e.hi) {
+                    events[j].lo = r.lo();
+                    events[j].hi = r.hi();
+                    if let Root::At { t } = r {
+                        let (u, v) = uv(fixed, c, t);
+                        events[j].id = CrossingId::Exact { u, v };
+                    }
+                    refined = true;
+                }
+            }
+        }
+        if !refined {
+            return Err("roots of g on opposite box edges could not be separated".into());
+        }
+    }
+    events.sort_by_key(|e| (e.lo, e.hi));
+    if (1..events.len()).any(|i| conflict(&events[i - 1], &events[i])) {
+        return Err("roots of g on opposite box edges could not be separated".into());
+    }
+    // Whether the curve is in the box, in each gap between events (and before the first and
+    // after the last): the signs of g on the two m-edges differ there. A gap that is a single
+    // point is sampled at that point unless it is a root.
+    let mut gap_in = Vec::with_capacity(events.len() + 1);
+    for k in 0..=events.len() {
+        let (left, right) = (k.checked_sub(1).map(|i| &events[i]), events.get(k));
+        let a = left.map_or(o_lo, |e| e.hi);
+        let b = right.map_or(o_hi, |e| e.lo);
+        let s = if a < b {
+            a.midpoint(b)
+                .ok_or("the depth budget was reached separating roots")?
+        } else {
+            let at_root = left.is_some_and(|e| !is_open(e)) || right.is_some_and(|e| !is_open(e));
+            if at_root {
+                gap_in.push(None);
+                continue;
+            }
+            a
+        };
+        let (u0, v0) = uv(m, cell.lo[m], s);
+        let (u1, v1) = uv(m, cell.hi[m], s);
+        let (sa, sb) = (lines.sign_at(u0, v0), lines.sign_at(u1, v1));
+        if !sa.is_nonzero() || !sb.is_nonzero() {
+            return Err("the sign of g between roots was not decided".into());
+        }
+        gap_in.push(Some(sa != sb));
+    }
+    // Walk: components are runs of "in" gaps joined through pass-through events.
+    let mut arcs = Vec::new();
+    let mut start: Option<CrossingId> = None;
+    if gap_in[0] == Some(true) {
+        start = Some(o_edge_crossing(lines, m, o_lo, cell.lo[m], cell.hi[m])?);
+    }
+    for (k, e) in events.iter().enumerate() {
+        let before = gap_in[k];
+        let after = gap_in[k + 1];
+        if e.zero {
+            // The curve runs along this m-edge from e.lo to e.hi: an arc on the edge (split at
+            // breakpoints so both neighbours produce the same pieces).
+            let mc = if e.side == 0 { cell.lo[m] } else { cell.hi[m] };
+            let (u0, v0) = uv(m, mc, e.lo);
+            let (u1, v1) = uv(m, mc, e.hi);
+            let (a, b) = (
+                CrossingId::Exact { u: u0, v: v0 },
+                CrossingId::Exact { u: u1, v: v1 },
+            );
+            if let Some(s) = start.take() {
+                if s != a {
+                    arcs.push(Arc {
+                        from: s,
+                        to: a,
+                        cell,
+                        reason,
+                    });
+                }
+            }
+            arcs.push(Arc {
+                from: a,
+                to: b,
+                cell,
+                reason: "on edge",
+            });
+            if after == Some(true) {
+                start = Some(b);
+            }
+            continue;
+        }
+        match (start, before == Some(true), after == Some(true)) {
+            // Entering: a component starts at this event.
+            (None, _, true) => start = Some(e.id),
+            // Leaving: it ends here.
+            (Some(s), _, false) => {
+                arcs.push(Arc {
+                    from: s,
+                    to: e.id,
+                    cell,
+                    reason,
+                });
+                start = None;
+            }
+            // Passing through (a touch of the edge), or an isolated touch point: nothing.
+            _ => {}
+        }
+    }
+    if let Some(s) = start {
+        if gap_in.last() == Some(&Some(true)) {
+            let end = o_edge_crossing(lines, m, o_hi, cell.lo[m], cell.hi[m])?;
+            arcs.push(Arc {
+                from: s,
+                to: end,
+                cell,
+                reason,
+            });
+        } else {
+            return Err("internal: a component of the curve has no end in its box".into());
+        }
+    }
+    Ok(arcs)
+}
+
+/// Chains arcs into branches through shared crossings.
+fn chain(arcs: &[Arc]) -> Vec<Branch> {
+    let mut incident: BTreeMap<CrossingId, Vec<usize>> = BTreeMap::new();
+    for (i, a) in arcs.iter().enumerate() {
+        incident.entry(a.from).or_default().push(i);
+        incident.entry(a.to).or_default().push(i);
+    }
+    let on_boundary = |id: &CrossingId| -> bool {
+        let (u, v) = match *id {
+            CrossingId::Exact { u, v } => (Some(u), Some(v)),
+            CrossingId::Segment { fixed, c, .. } => {
+                if fixed == 0 {
+                    (Some(c), None)
+                } else {
+                    (None, Some(c))
+                }
+            }
+        };
+        [u, v]
+            .into_iter()
+            .flatten()
+            .any(|x| x == Dyadic::ZERO || x == Dyadic::ONE)
+    };
+    let mut used = vec![false; arcs.len()];
+    let mut branches = Vec::new();
+    // Open branches first, from ends of degree 1, in a fixed order.
+    let ends: Vec<CrossingId> = incident
+        .iter()
+        .filter(|(_, v)| v.len() == 1)
+        .map(|(k, _)| *k)
+        .collect();
+    for end in ends {
+        let first = incident[&end][0];
+        if used[first] {
+            continue;
+        }
+        let (crossings, last) = walk(arcs, &incident, &mut used, end, first);
+        let complete = on_boundary(&end) && on_boundary(&last) && incident[&last].len() == 1;
+        branches.push(Branch {
+            crossings,
+            closed: false,
+            complete,
+        });
+    }
+    for i in 0..arcs.len() {
+        if used[i] {
+            continue;
+        }
+        let start = arcs[i].from;
+        let (crossings, last) = walk(arcs, &incident, &mut used, start, i);
+        let closed = last == start;
+        let complete = closed && crossings.iter().all(|c| incident[c].len() == 2);
+        branches.push(Branch {
+            crossings,
+            closed,
+            complete,
+        });
+    }
+    branches
+}
+
+fn walk(
+    arcs: &[Arc],
+    incident: &BTreeMap<CrossingId, Vec<usize>>,
+    used: &mut [bool],
+    start: CrossingId,
+    first: usize,
+) -> (Vec<CrossingId>, CrossingId) {
+    let mut crossings = vec![start];
+    let mut at = start;
+    let mut arc = first;
+    loop {
+        used[arc] = true;
+        let a = &arcs[arc];
+        let next = if a.from == at { a.to } else { a.from };
+        if next == start {
+            return (crossings, next);
+        }
+        crossings.push(next);
+        at = next;
+        // Continue only through a crossing of degree exactly 2 (anything else ends the walk).
+        let inc = &incident[&at];
+        if inc.len() != 2 {
+            return (crossings, at);
+        }
+        match inc.iter().find(|&&j| !used[j]) {
+            Some(&j) => arc = j,
+            None => return (crossings, at),
+        }
+    }
+}

@@ -1,0 +1,208 @@
+//! The bivariate curve solver against closed forms: component counts (completeness and
+//! soundness of the topology), crossing locations on the true curve, degenerate cases reported.
+
+use limn::bernstein::Bernstein;
+use limn::number::Rational;
+use limn::solver::{solve_curve, CrossingId, CurveOptions, CurveTopology};
+
+fn q(a: i64, b: i64) -> Rational {
+    Rational::from((a, b))
+}
+
+/// The exact Bernstein form of a polynomial in u, v given by a closure on exact rationals,
+/// of degree (d, d): interpolated... built from monomials instead, which is exact.
+fn from_monomials(d: usize, terms: &[((usize, usize), Rational)]) -> Bernstein<Rational> {
+    // u^i = Σ_k C(k,i)/C(d,i) B_{d,k}(u).
+    let mono = |i: usize| -> Vec<Rational> {
+        (0..=d)
+            .map(|k| {
+                if k < i {
+                    Rational::new()
+                } else {
+                    Rational::from((
+                        rug::Integer::from(rug::Integer::binomial_u(k as u32, i as u32)),
+                        rug::Integer::from(rug::Integer::binomial_u(d as u32, i as u32)),
+                    ))
+                }
+            })
+            .collect()
+    };
+    let mut c = vec![Rational::new(); (d + 1) * (d + 1)];
+    for ((i, j), a) in terms {
+        let (bu, bv) = (mono(*i), mono(*j));
+        for k in 0..=d {
+            for l in 0..=d {
+                c[k * (d + 1) + l] += Rational::from(a * &bu[k]) * &bv[l];
+            }
+        }
+    }
+    Bernstein::new(&[d, d], c).unwrap()
+}
+
+/// (u − a)² + (v − b)² − r².
+fn circle(a: &Rational, b: &Rational, r2: &Rational, d: usize) -> Bernstein<Rational> {
+    let c0 = Rational::from(a * a) + Rational::from(b * b) - r2;
+    from_monomials(
+        d,
+        &[
+            ((2, 0), q(1, 1)),
+            ((1, 0), -2 * a.clone()),
+            ((0, 2), q(1, 1)),
+            ((0, 1), -2 * b.clone()),
+            ((0, 0), c0),
+        ],
+    )
+}
+
+fn closed_loops(t: &CurveTopology) -> usize {
+    t.branches.iter().filter(|b| b.closed && b.complete).count()
+}
+
+/// Every crossing's location box contains a point of the curve: the exact polynomial takes
+/// both signs (or zero) at the ends of the location along its line.
+fn crossings_are_on_the_curve(g: &Bernstein<Rational>, t: &CurveTopology) {
+    for (id, [lo, hi]) in &t.locations {
+        let val = |p: [f64; 2]| {
+            g.eval(&[
+                Rational::from_f64(p[0]).unwrap(),
+                Rational::from_f64(p[1]).unwrap(),
+            ])
+        };
+        match id {
+            CrossingId::Exact { .. } => assert_eq!(val(*lo), 0, "{id:?}"),
+            CrossingId::Segment { .. } => {
+                let (a, b) = (val(*lo), val(*hi));
+                assert!(Rational::from(&a * &b) <= 0, "{id:?}: {a} {b}");
+                assert!((hi[0] - lo[0]).max(hi[1] - lo[1]) <= 1e-9);
+            }
+        }
+    }
+}
+
+#[test]
+fn one_circle_is_one_closed_loop() {
+    let g = circle(&q(1, 3), &q(2, 5), &q(1, 16), 2);
+    let t = solve_curve(&g, &CurveOptions::default());
+    assert!(t.is_certified(), "{:?}", t.unresolved);
+    assert_eq!(t.branches.len(), 1);
+    assert_eq!(closed_loops(&t), 1);
+    crossings_are_on_the_curve(&g, &t);
+    assert_eq!(
+        t.escalations.escalated(),
+        0,
+        "generic input needs no escalation"
+    );
+}
+
+#[test]
+fn two_disjoint_circles_are_two_loops_and_a_point_circle_none() {
+    // (circle1) * (circle2) has degree 4.
+    let a = circle(&q(1, 4), &q(1, 4), &q(1, 64), 2);
+    let b = circle(&q(2, 3), &q(3, 5), &q(1, 25), 2);
+    let g = &a * &b;
+    let t = solve_curve(&g, &CurveOptions::default());
+    assert!(t.is_certified(), "{:?}", t.unresolved);
+    assert_eq!(closed_loops(&t), 2);
+    assert_eq!(t.branches.len(), 2);
+    crossings_are_on_the_curve(&g, &t);
+    // r² < 0: no real points at all.
+    let empty = circle(&q(1, 2), &q(1, 2), &q(-1, 9), 2);
+    let t = solve_curve(&empty, &CurveOptions::default());
+    assert!(t.is_certified() && t.branches.is_empty());
+}
+
+#[test]
+fn a_curve_on_a_grid_line_and_through_corners() {
+    // u = 1/2 exactly: the curve lies on the first split line.
+    let g = from_monomials(1, &[((1, 0), q(1, 1)), ((0, 0), q(-1, 2))]);
+    let t = solve_curve(&g, &CurveOptions::default());
+    assert!(t.is_certified(), "{:?}", t.unresolved);
+    assert_eq!(t.branches.len(), 1, "{:#?}", t.branches);
+    let b = &t.branches[0];
+    assert!(!b.closed && b.complete);
+    // The diagonal u = v passes through every corner on it.
+    let d = from_monomials(1, &[((1, 0), q(1, 1)), ((0, 1), q(-1, 1))]);
+    let t = solve_curve(&d, &CurveOptions::default());
+    assert!(t.is_certified(), "{:?}", t.unresolved);
+    assert_eq!(t.branches.len(), 1, "{:#?}", t.branches);
+    assert!(t.branches[0].complete);
+}
+
+#[test]
+fn a_circle_tangent_to_the_boundary_and_an_arc_across() {
+    // Tangent to u = 0 at (0, 1/2): still one closed loop, touching the boundary.
+    let g = circle(&q(1, 3), &q(1, 2), &q(1, 9), 2);
+    let t = solve_curve(&g, &CurveOptions::default());
+    assert!(t.is_certified(), "{:?}", t.unresolved);
+    assert_eq!(closed_loops(&t), 1, "{:#?}", t.branches);
+    // A circle around a corner: one open arc from edge to edge.
+    let g = circle(&q(0, 1), &q(0, 1), &q(1, 4), 2);
+    let t = solve_curve(&g, &CurveOptions::default());
+    assert!(t.is_certified(), "{:?}", t.unresolved);
+    assert_eq!(t.branches.len(), 1);
+    assert!(!t.branches[0].closed && t.branches[0].complete);
+    crossings_are_on_the_curve(&g, &t);
+}
+
+#[test]
+fn a_node_is_reported_unresolved_not_guessed() {
+    // (u − v)(u + v − 1 + 1/7): two lines crossing at a non-dyadic point.
+    let l1 = from_monomials(1, &[((1, 0), q(1, 1)), ((0, 1), q(-1, 1))]);
+    let l2 = from_monomials(
+        1,
+        &[((1, 0), q(1, 1)), ((0, 1), q(1, 1)), ((0, 0), q(-6, 7))],
+    );
+    let g = &l1 * &l2;
+    let opts = CurveOptions {
+        max_depth: 12,
+        ..CurveOptions::default()
+    };
+    let t = solve_curve(&g, &opts);
+    assert!(!t.is_certified());
+    // The unresolved boxes are near the crossing (3/7, 3/7), and nowhere else.
+    for u in &t.unresolved {
+        let [lo, hi] = u.cell.to_f64();
+        assert!(
+            lo[0] <= 3.0 / 7.0 + 1e-3 && hi[0] >= 3.0 / 7.0 - 1e-3,
+            "{:?}",
+            u.cell
+        );
+    }
+    let zero = from_monomials(1, &[]);
+    assert!(solve_curve(&zero, &opts).identically_zero);
+}
+
+mod fuzz {
+    use super::*;
+    use limn::testing::strategies;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(limn::testing_cases(48)))]
+
+        /// Random and degenerate bivariate polynomials: the solver terminates within its
+        /// budget, never panics, every crossing it reports is on the curve, every branch is a
+        /// chain of arcs, and every crossing lies in the box of its arc.
+        #[test]
+        fn random_polynomials(p in strategies::bernstein(2, 4).prop_filter("bivariate", |p| p.nvars() == 2)) {
+            let opts = CurveOptions { max_depth: 10, max_boxes: 20_000, ..CurveOptions::default() };
+            let t = solve_curve(&p, &opts);
+            prop_assert!(t.boxes <= 20_000 + 4);
+            if t.identically_zero {
+                prop_assert!(p.is_zero());
+                return Ok(());
+            }
+            crossings_are_on_the_curve(&p, &t);
+            for b in &t.branches {
+                prop_assert!(!b.crossings.is_empty());
+            }
+            for a in &t.arcs {
+                let [lo, hi] = a.cell.to_f64();
+                for id in [a.from, a.to] {
+                    let [l, h] = t.locations[&id];
+                    prop_assert!(l[0] >= lo[0] && h[0] <= hi[0] && l[1] >= lo[1] && h[1] <= hi[1], "crossing outside its arc's box");
+                }
+            }
+        }
+    }
+}
