@@ -12,6 +12,7 @@
 //!
 //! Proofs of the guarantees the code relies on are in `proofs/` in the repository.
 
+pub mod analysis;
 pub mod bernstein;
 pub mod cli;
 pub mod io;

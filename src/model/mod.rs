@@ -5,7 +5,7 @@ mod topology;
 
 pub use info::{default_weld, BoundingBox, ModelInfo};
 
-pub use topology::{MeshTopology, PatchTopology, WeldTolerance};
+pub use topology::{MeshTopology, PatchAdjacency, PatchTopology, SideUse, WeldTolerance};
 
 use crate::number::Rational;
 use crate::surface::{Mesh, Point3, RationalPatch};

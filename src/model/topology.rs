@@ -177,8 +177,8 @@ impl Welder {
 type Side<'a> = Vec<(&'a Point3, &'a Rational)>;
 
 /// Edge classes under one key (sorted endpoint vertex ids): a representative side and the
-/// patches whose sides match it.
-type EdgeClasses<'a> = HashMap<(usize, usize), Vec<(Side<'a>, Vec<usize>)>>;
+/// patch sides that match it.
+type EdgeClasses<'a> = HashMap<(usize, usize), Vec<(Side<'a>, Vec<SideUse>)>>;
 
 fn points_match(a: &Side, b: &Side, tol: WeldTolerance, reversed: bool, max_gap: &mut f64) -> bool {
     if a.len() != b.len() {
@@ -218,13 +218,34 @@ fn collapsed(side: &Side, tol: WeldTolerance) -> bool {
     }
 }
 
-impl PatchTopology {
-    /// The topology of a set of patches, matching corners and boundary curves as `weld` says.
-    ///
-    /// Two patch sides are the same edge when their control points agree (in order or
-    /// reversed) and their weights are proportional. Sides of different degrees are not
-    /// matched (degree elevation to match them is left to a later version).
-    pub fn of_patches(patches: &[&RationalPatch], weld: WeldTolerance) -> PatchTopology {
+/// One patch side as a user of an edge.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SideUse {
+    /// The patch index.
+    pub patch: usize,
+    /// Which side.
+    pub edge: Edge,
+    /// Whether this side runs opposite to the first user of the same edge.
+    pub reversed: bool,
+}
+
+/// Which patch sides are the same edge, which are collapsed, and the welded corners.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PatchAdjacency {
+    /// Each distinct (non-collapsed) edge with the patch sides that bound it, the first user
+    /// defining the direction.
+    pub edges: Vec<Vec<SideUse>>,
+    /// Collapsed sides: (patch, side, the vertex id of the point they collapse to).
+    pub collapsed: Vec<(usize, Edge, usize)>,
+    /// The number of distinct corner vertices.
+    pub corner_vertices: usize,
+    /// The largest coordinate difference welded (0 if exact).
+    pub max_weld_gap: f64,
+}
+
+impl PatchAdjacency {
+    /// Matches corners and sides as `weld` says (see [`PatchTopology::of_patches`]).
+    pub fn of_patches(patches: &[&RationalPatch], weld: WeldTolerance) -> PatchAdjacency {
         let mut welder = Welder {
             tol: weld,
             exact: HashMap::new(),
@@ -233,9 +254,9 @@ impl PatchTopology {
             max_gap: 0.0,
         };
         let mut used = vec![];
-        // Edge classes: by sorted endpoint ids, a list of (representative side, patch sides).
         let mut classes: EdgeClasses = HashMap::new();
-        let mut collapsed_edges = 0;
+        let mut order: Vec<((usize, usize), usize)> = Vec::new();
+        let mut collapsed_sides = Vec::new();
         let mut max_gap = 0.0f64;
         for (pi, patch) in patches.iter().enumerate() {
             for edge in Edge::ALL {
@@ -245,44 +266,79 @@ impl PatchTopology {
                 used.push(a);
                 used.push(b);
                 if a == b && collapsed(&side, weld) {
-                    collapsed_edges += 1;
+                    collapsed_sides.push((pi, edge, a));
                     continue;
                 }
                 let key = (a.min(b), a.max(b));
                 let bucket = classes.entry(key).or_default();
-                let found = bucket.iter().position(|(rep, _)| {
-                    points_match(rep, &side, weld, false, &mut max_gap)
-                        || points_match(rep, &side, weld, true, &mut max_gap)
+                let found = bucket.iter().enumerate().find_map(|(k, (rep, _))| {
+                    if points_match(rep, &side, weld, false, &mut max_gap) {
+                        Some((k, false))
+                    } else if points_match(rep, &side, weld, true, &mut max_gap) {
+                        Some((k, true))
+                    } else {
+                        None
+                    }
                 });
+                let user = |reversed| SideUse {
+                    patch: pi,
+                    edge,
+                    reversed,
+                };
                 match found {
-                    Some(k) => bucket[k].1.push(pi),
-                    None => bucket.push((side, vec![pi])),
+                    Some((k, reversed)) => bucket[k].1.push(user(reversed)),
+                    None => {
+                        order.push((key, bucket.len()));
+                        bucket.push((side, vec![user(false)]));
+                    }
                 }
             }
         }
         used.sort_unstable();
         used.dedup();
+        // In order of first appearance, so that the result does not depend on hashing.
+        let edges = order
+            .into_iter()
+            .map(|(key, k)| classes[&key][k].1.clone())
+            .collect();
+        PatchAdjacency {
+            edges,
+            collapsed: collapsed_sides,
+            corner_vertices: used.len(),
+            max_weld_gap: max_gap.max(welder.max_gap),
+        }
+    }
+}
+
+impl PatchTopology {
+    /// The topology of a set of patches, matching corners and boundary curves as `weld` says.
+    ///
+    /// Two patch sides are the same edge when their control points agree (in order or
+    /// reversed) and their weights are proportional. Sides of different degrees are not
+    /// matched (degree elevation to match them is left to a later version).
+    pub fn of_patches(patches: &[&RationalPatch], weld: WeldTolerance) -> PatchTopology {
+        let adj = PatchAdjacency::of_patches(patches, weld);
         let mut comps = Components::new(patches.len());
-        let (mut edges, mut shared, mut boundary, mut nonmanifold) = (0, 0, 0, 0);
-        for bucket in classes.values() {
-            for (_, users) in bucket {
-                edges += 1;
-                match users.len() {
-                    1 => boundary += 1,
-                    2 => shared += 1,
-                    _ => nonmanifold += 1,
-                }
-                for w in users.windows(2) {
-                    comps.union(w[0], w[1]);
-                }
+        let (mut shared, mut boundary, mut nonmanifold) = (0, 0, 0);
+        for class in &adj.edges {
+            match class.len() {
+                1 => boundary += 1,
+                2 => shared += 1,
+                _ => nonmanifold += 1,
+            }
+            for w in class.windows(2) {
+                comps.union(w[0].patch, w[1].patch);
             }
         }
+        let (edges, collapsed_edges, max_gap) =
+            (adj.edges.len(), adj.collapsed.len(), adj.max_weld_gap);
+        let used = adj.corner_vertices;
         let components = comps.count();
-        let chi = used.len() as i64 - edges as i64 + patches.len() as i64;
+        let chi = used as i64 - edges as i64 + patches.len() as i64;
         let closed = !patches.is_empty() && boundary == 0 && nonmanifold == 0;
         PatchTopology {
             patches: patches.len(),
-            vertices: used.len(),
+            vertices: used,
             edges,
             shared_edges: shared,
             boundary_edges: boundary,
@@ -293,7 +349,7 @@ impl PatchTopology {
             euler_characteristic: chi,
             genus: genus(closed, components, chi),
             weld,
-            max_weld_gap: max_gap.max(welder.max_gap),
+            max_weld_gap: max_gap,
         }
     }
 

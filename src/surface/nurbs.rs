@@ -1,5 +1,6 @@
 //! NURBS surfaces and their exact split into rational Bézier patches.
 
+use super::patch::first_nonpositive;
 use super::{Point3, RationalPatch};
 use crate::number::Rational;
 
@@ -194,15 +195,8 @@ impl NurbsSurface {
                 got: points.len().min(weights.len()),
             });
         }
-        if let Some((index, w)) = weights
-            .iter()
-            .enumerate()
-            .find(|(_, w)| w.cmp0() != std::cmp::Ordering::Greater)
-        {
-            return Err(NurbsError::NonPositiveWeight {
-                index,
-                value: w.to_string(),
-            });
+        if let Some((index, value)) = first_nonpositive(&weights) {
+            return Err(NurbsError::NonPositiveWeight { index, value });
         }
         Ok(NurbsSurface {
             degree,

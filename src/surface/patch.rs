@@ -91,6 +91,14 @@ pub struct RationalPatch {
     weights: Vec<Rational>,
 }
 
+/// The first weight that is not positive, with its position and value.
+pub(crate) fn first_nonpositive(weights: &[Rational]) -> Option<(usize, String)> {
+    weights
+        .iter()
+        .position(|w| w.cmp0() != std::cmp::Ordering::Greater)
+        .map(|i| (i, weights[i].to_string()))
+}
+
 /// The highest degree accepted in u or v (IGES files in the wild reach 12 to 20).
 pub const MAX_PATCH_DEGREE: usize = 64;
 
@@ -127,15 +135,8 @@ impl RationalPatch {
                 weights: weights.len(),
             });
         }
-        if let Some((index, w)) = weights
-            .iter()
-            .enumerate()
-            .find(|(_, w)| w.cmp0() != std::cmp::Ordering::Greater)
-        {
-            return Err(PatchError::NonPositiveWeight {
-                index,
-                value: w.to_string(),
-            });
+        if let Some((index, value)) = first_nonpositive(&weights) {
+            return Err(PatchError::NonPositiveWeight { index, value });
         }
         Ok(RationalPatch {
             degree,

@@ -1,0 +1,3 @@
+//! Layer 5: analyses, one module per capability, each built on the solver.
+
+pub mod silhouette;

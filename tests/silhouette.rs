@@ -1,0 +1,161 @@
+//! Silhouettes of exact closed-form models: loop counts (completeness and soundness of the
+//! topology), every output crossing on the true silhouette, degenerate cases reported.
+
+use limn::analysis::silhouette::{silhouette, View};
+use limn::model::{Format, Model, WeldTolerance};
+use limn::number::Rational;
+use limn::solver::{CrossingId, CurveOptions};
+use limn::testing::shapes;
+
+fn q(a: i64, b: i64) -> Rational {
+    Rational::from((a, b))
+}
+
+fn model(patches: Vec<limn::surface::RationalPatch>) -> Model {
+    Model::from_patches(Format::Json, patches)
+}
+
+fn dir(x: i64, y: i64, z: i64) -> View {
+    View::Direction([q(x, 1), q(y, 1), q(z, 1)])
+}
+
+/// For a sphere about the origin the normal is parallel to the position, so the silhouette
+/// for direction V is S · V = 0: check every crossing's location box brackets it, exactly.
+fn sphere_crossings_on_true_silhouette(
+    m: &Model,
+    s: &limn::analysis::silhouette::Silhouette,
+    v: &[Rational; 3],
+) {
+    for (p, t) in s.patches.iter().enumerate() {
+        // The crossings of the arcs kept (arcs along collapsed sides are dropped).
+        let kept: Vec<CrossingId> = t.arcs.iter().flat_map(|a| [a.from, a.to]).collect();
+        for (id, [lo, hi]) in t.locations.iter().filter(|(id, _)| kept.contains(id)) {
+            let f = |x: [f64; 2]| {
+                let pt = m.patches[p].surface.eval(
+                    &Rational::from_f64(x[0]).unwrap(),
+                    &Rational::from_f64(x[1]).unwrap(),
+                );
+                (0..3)
+                    .map(|k| Rational::from(&pt[k] * &v[k]))
+                    .sum::<Rational>()
+            };
+            let (a, b) = (f(*lo), f(*hi));
+            match id {
+                CrossingId::Exact { .. } => assert_eq!(a, 0),
+                CrossingId::Segment { .. } => {
+                    assert!(Rational::from(&a * &b) <= 0, "patch {p} {id:?}")
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn sphere_has_one_loop_from_generic_directions() {
+    let m = model(shapes::sphere(&q(3, 2)));
+    for (x, y, z) in [(1, 2, 3), (-2, 1, 5), (3, -4, 1), (1, 1, -7)] {
+        let s = silhouette(
+            &m,
+            &dir(x, y, z),
+            &CurveOptions::default(),
+            WeldTolerance::Exact,
+        );
+        assert!(s.unresolved.is_empty(), "{:?}", s.unresolved);
+        assert!(s.unjoined_edges.is_empty(), "{:?}", s.unjoined_edges);
+        assert_eq!(
+            s.curves.len(),
+            1,
+            "direction ({x},{y},{z}): {:#?}",
+            s.curves
+                .iter()
+                .map(|c| (c.closed, c.patches.clone()))
+                .collect::<Vec<_>>()
+        );
+        assert!(s.curves[0].closed && s.curves[0].certified_topology);
+        sphere_crossings_on_true_silhouette(&m, &s, &[q(x, 1), q(y, 1), q(z, 1)]);
+        // The poles are collapsed sides, reported as degenerate.
+        assert_eq!(
+            s.degenerate
+                .iter()
+                .filter(|d| d.kind == "collapsed side")
+                .count(),
+            8
+        );
+        assert_eq!(
+            s.escalations.escalated(),
+            0,
+            "generic directions need no escalation"
+        );
+    }
+}
+
+#[test]
+fn torus_has_two_loops_from_generic_directions() {
+    let m = model(shapes::torus(&q(3, 1), &q(1, 1)));
+    for (x, y, z) in [(1, 2, 3), (2, -1, 4), (-3, 1, 2)] {
+        let s = silhouette(
+            &m,
+            &dir(x, y, z),
+            &CurveOptions::default(),
+            WeldTolerance::Exact,
+        );
+        assert!(s.unresolved.is_empty(), "{:?}", s.unresolved);
+        let closed = s
+            .curves
+            .iter()
+            .filter(|c| c.closed && c.certified_topology)
+            .count();
+        assert_eq!(
+            closed,
+            2,
+            "direction ({x},{y},{z}): {} curves",
+            s.curves.len()
+        );
+        assert_eq!(s.curves.len(), 2);
+    }
+}
+
+#[test]
+fn perspective_sphere_is_one_loop_and_edge_on_plane_is_degenerate() {
+    let m = model(shapes::sphere(&q(1, 1)));
+    let s = silhouette(
+        &m,
+        &View::Eye([q(1, 3), q(2, 1), q(5, 1)]),
+        &CurveOptions::default(),
+        WeldTolerance::Exact,
+    );
+    assert!(s.unresolved.is_empty());
+    assert_eq!(s.curves.len(), 1);
+    assert!(s.curves[0].closed && s.curves[0].certified_topology);
+    let plane = model(vec![shapes::plane_square(&q(1, 1))]);
+    let s = silhouette(
+        &plane,
+        &dir(1, 2, 0),
+        &CurveOptions::default(),
+        WeldTolerance::Exact,
+    );
+    assert_eq!(s.degenerate.len(), 1);
+    assert_eq!(s.degenerate[0].kind, "edge-on");
+    assert!(s.curves.is_empty());
+}
+
+#[test]
+fn thread_count_does_not_change_the_answer() {
+    let m = model(shapes::torus(&q(3, 1), &q(1, 1)));
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            silhouette(
+                &m,
+                &dir(1, 2, 3),
+                &CurveOptions::default(),
+                WeldTolerance::Exact,
+            )
+        })
+    };
+    let (a, b) = (run(1), run(2));
+    assert_eq!(a.curves, b.curves);
+}
