@@ -213,15 +213,21 @@ fn strict_sign(
 /// The polynomial g restricted to the grid line where variable `fixed` is `c`, as a
 /// univariate polynomial in the other variable on [0, 1] (exact).
 fn line_polynomial(g: &Bernstein<Rational>, fixed: usize, c: Dyadic) -> Bernstein<Rational> {
-    let cq = c.to_rational();
-    let r = g.restrict(fixed, &cq, &cq);
-    // All coefficients along `fixed` are now equal: keep index 0 there.
+    let cq = [c.to_rational()];
     let [m, n] = [g.degrees()[0], g.degrees()[1]];
-    let coeffs: Vec<Rational> = if fixed == 0 {
-        (0..=n).map(|j| r.coeff(&[0, j]).clone()).collect()
-    } else {
-        (0..=m).map(|i| r.coeff(&[i, 0]).clone()).collect()
+    // Evaluate each fibre along `fixed` at c (de Casteljau, exact).
+    let fibre = |k: usize| -> Rational {
+        let values: Vec<Rational> = if fixed == 0 {
+            (0..=m).map(|i| g.coeff(&[i, k]).clone()).collect()
+        } else {
+            (0..=n).map(|j| g.coeff(&[k, j]).clone()).collect()
+        };
+        let len = values.len() - 1;
+        Bernstein::new(&[len], values)
+            .expect("one variable")
+            .eval(&cq)
     };
+    let coeffs: Vec<Rational> = (0..=if fixed == 0 { n } else { m }).map(fibre).collect();
     Bernstein::new(&[coeffs.len() - 1], coeffs).expect("one variable")
 }
 
@@ -239,6 +245,8 @@ enum SegmentRoots {
 /// Lazily computed, shared knowledge about grid lines: breakpoints, point signs, segment roots.
 struct Lines<'a> {
     g: &'a Bernstein<Rational>,
+    /// `g` in f64 intervals, derived once from the exact input (the fast path of point signs).
+    g_fast: Bernstein<Interval>,
     opts: &'a CurveOptions,
     breakpoints: BTreeMap<(usize, Dyadic), BTreeSet<Dyadic>>,
     polys: BTreeMap<(usize, Dyadic), Bernstein<Rational>>,
@@ -268,18 +276,25 @@ impl<'a> Lines<'a> {
         if let Some(s) = self.point_signs.get(&(u, v)) {
             return *s;
         }
-        let s = self
-            .opts
-            .ladder
-            .decide(
-                &PointSign {
-                    p: self.g,
-                    t: vec![u, v],
-                },
-                &mut self.stats,
-            )
-            .0
-            .unwrap_or(Sign::Unknown);
+        let x = [
+            u.to_number::<Interval>(Precision::F64),
+            v.to_number(Precision::F64),
+        ];
+        let fast = self.g_fast.eval(&x).sign();
+        let s = if fast.is_known() {
+            self.stats.record(Some(super::precision::Level::F64));
+            fast
+        } else {
+            let q = PointSign {
+                p: self.g,
+                t: vec![u, v],
+            };
+            self.opts
+                .ladder
+                .escalate(&q, &mut self.stats)
+                .0
+                .unwrap_or(Sign::Unknown)
+        };
         self.point_signs.insert((u, v), s);
         s
     }
@@ -392,6 +407,7 @@ pub fn solve_curve(g: &Bernstein<Rational>, opts: &CurveOptions) -> CurveTopolog
 
     // Phase 2: atomic segments. Every leaf's corners cut the grid lines its edges lie on.
     let mut lines = Lines {
+        g_fast: g.convert(Precision::F64),
         g,
         opts,
         breakpoints: BTreeMap::new(),

@@ -225,6 +225,11 @@ pub fn isolate_roots_in(
 
 /// Narrows an isolated root to an interval of width at most `width` (a `Between` stays a
 /// `Between` of one root, or becomes `At` if a split point is the root).
+///
+/// Bisection on the variation count: the half with one variation holds the root
+/// (`proofs/bernstein-descartes.md`). The f64-interval coefficients of the current interval
+/// are carried down (enclosures, `proofs/de-casteljau-enclosure.md`); a sign they cannot decide
+/// is recomputed from the exact polynomial by the precision ladder.
 pub fn refine_root(
     p: &Bernstein<Rational>,
     root: Root,
@@ -235,24 +240,42 @@ pub fn refine_root(
     let Root::Between { mut lo, mut hi } = root else {
         return root;
     };
-    // The sign at the upper end (nonzero: the root is not there) orients the bisection; if
-    // both ends are roots, variations of the halves decide.
+    let n = p.degrees()[0];
+    let mut coeffs: Bernstein<Interval> = p
+        .restrict(0, &lo.to_rational(), &hi.to_rational())
+        .convert(Precision::F64);
     while hi.to_f64() - lo.to_f64() > width {
         let Some(mid) = lo.midpoint(hi) else { break };
-        let s_mid = ladder
-            .decide(&PointSign { p, t: vec![mid] }, stats)
-            .0
-            .unwrap_or(Sign::Unknown);
-        if s_mid.is_zero() {
-            return Root::At { t: mid };
+        let (left, right) = coeffs.subdivide_half(0);
+        let s_mid = match left.coeffs()[n].sign() {
+            s if s.is_known() => s,
+            _ => ladder
+                .escalate(&PointSign { p, t: vec![mid] }, stats)
+                .0
+                .unwrap_or(Sign::Unknown),
+        };
+        match s_mid {
+            Sign::Zero => return Root::At { t: mid },
+            Sign::Unknown => break,
+            _ => {}
         }
-        let left = ladder
-            .decide(&CoefficientSigns { p, lo, hi: mid }, stats)
-            .0
-            .map(|s| variations(&s));
-        match left {
-            Some(1) => hi = mid,
-            Some(0) => lo = mid,
+        let fast: Vec<Sign> = left.coeffs().iter().map(|c| c.sign()).collect();
+        let signs = if fast.iter().all(|s| s.is_known()) {
+            Some(fast)
+        } else {
+            ladder
+                .escalate(&CoefficientSigns { p, lo, hi: mid }, stats)
+                .0
+        };
+        match signs.map(|s| variations(&s)) {
+            Some(1) => {
+                hi = mid;
+                coeffs = left;
+            }
+            Some(0) => {
+                lo = mid;
+                coeffs = right;
+            }
             _ => break,
         }
     }
