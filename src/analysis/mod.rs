@@ -1,3 +1,4 @@
 //! Layer 5: analyses, one module per capability, each built on the solver.
 
+pub mod render;
 pub mod silhouette;

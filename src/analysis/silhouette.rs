@@ -86,7 +86,9 @@ pub struct SilhouetteCurve {
     /// Its topology is proven: every join is proven and an open curve ends on the open
     /// boundary of the model.
     pub certified_topology: bool,
-    /// The crossings in order: (patch, u, v) at the centre of each certified location.
+    /// Points along the curve in order, (patch, u, v): the crossings at the centres of their
+    /// certified locations and, between them, drawing points on the curve computed in f64 on
+    /// lines across each arc's box (not certified).
     pub points_uv: Vec<(usize, f64, f64)>,
     /// The same points in space (f64 evaluation of the patch at those parameters).
     pub points: Vec<[f64; 3]>,
@@ -286,7 +288,8 @@ pub fn silhouette(
             unjoined.push((a.patch, a.edge, b.patch, b.edge));
         }
     }
-    let curves = chain_model(&tops, &patches, &mut joins, &open_boundary);
+    let gs_fast: Vec<Bernstein<f64>> = gs.iter().map(|g| g.convert(Precision::F64)).collect();
+    let curves = chain_model(&tops, &gs_fast, &patches, &mut joins, &open_boundary);
     Silhouette {
         curves,
         patches: tops,
@@ -359,17 +362,85 @@ fn join_side(
     true
 }
 
+/// Points added inside each arc for drawing.
+const DENSIFY_STEPS: usize = 8;
+
+/// The points of an arc for drawing: its two crossings (certified locations) and
+/// `steps − 1` points between them. Each is the zero of g on a line across the arc's box along
+/// which g is strictly monotone (so the line meets this arc exactly once), found in f64 by the
+/// Illinois method: drawing points, not certified ones.
+fn densify(
+    g: &Bernstein<f64>,
+    t: &CurveTopology,
+    a: &crate::solver::curve2::Arc,
+    steps: usize,
+) -> Vec<[f64; 2]> {
+    let (p0, p1) = (t.point(&a.from), t.point(&a.to));
+    let m = match a.reason {
+        "graph over v" => 0,
+        "graph over u" => 1,
+        _ => return vec![p0, p1],
+    };
+    let o = 1 - m;
+    let [lo, hi] = a.cell.to_f64();
+    let mut pts = vec![p0];
+    for i in 1..steps {
+        let s = p0[o] + (p1[o] - p0[o]) * i as f64 / steps as f64;
+        let f = |x: f64| {
+            let mut pt = [0.0; 2];
+            pt[m] = x;
+            pt[o] = s;
+            g.eval(&pt)
+        };
+        let (mut x0, mut x1) = (lo[m], hi[m]);
+        let (mut f0, mut f1) = (f(x0), f(x1));
+        if !(f0 * f1 < 0.0) {
+            continue;
+        }
+        let mut side = 0;
+        for _ in 0..60 {
+            let x = (x0 * f1 - x1 * f0) / (f1 - f0);
+            let fx = f(x);
+            if fx == 0.0 || (x1 - x0).abs() < 1e-14 {
+                x0 = x;
+                x1 = x;
+                break;
+            }
+            if fx * f1 < 0.0 {
+                (x0, f0) = (x1, f1);
+                (x1, f1) = (x, fx);
+                side = 0;
+            } else {
+                (x1, f1) = (x, fx);
+                if side == 1 {
+                    f0 *= 0.5;
+                }
+                side = 1;
+            }
+        }
+        let mut q = [0.0; 2];
+        q[m] = 0.5 * (x0 + x1);
+        q[o] = s;
+        pts.push(q);
+    }
+    pts.push(p1);
+    pts
+}
+
 fn chain_model(
     tops: &[CurveTopology],
+    gs_fast: &[Bernstein<f64>],
     patches: &[&RationalPatch],
     joins: &mut Joins,
     open_boundary: &[(usize, Edge)],
 ) -> Vec<SilhouetteCurve> {
     // Arcs of all patches, with their ends mapped to joined nodes.
     let mut arcs: Vec<(Node, Node, usize)> = Vec::new();
+    let mut arc_ref: Vec<(usize, usize)> = Vec::new();
     for (p, t) in tops.iter().enumerate() {
-        for a in &t.arcs {
+        for (k, a) in t.arcs.iter().enumerate() {
             arcs.push((joins.find((p, a.from)), joins.find((p, a.to)), p));
+            arc_ref.push((p, k));
         }
     }
     let mut incident: BTreeMap<Node, Vec<usize>> = BTreeMap::new();
@@ -395,6 +466,7 @@ fn chain_model(
             continue;
         };
         let mut nodes = vec![start];
+        let mut walked: Vec<(usize, bool)> = Vec::new();
         let mut at = start;
         let mut arc = first;
         let mut closed = false;
@@ -402,6 +474,7 @@ fn chain_model(
             used[arc] = true;
             let (x, y, _) = arcs[arc];
             let next = if x == at { y } else { x };
+            walked.push((arc, x != at));
             if next == start && !open {
                 closed = true;
                 break;
@@ -430,15 +503,24 @@ fn chain_model(
         };
         let mut visited = Vec::new();
         let mut points_uv = Vec::new();
-        let mut points = Vec::new();
-        for (p, id) in &nodes {
-            if !visited.contains(p) {
-                visited.push(*p);
+        for &(arc, backwards) in &walked {
+            let (p, k) = arc_ref[arc];
+            if !visited.contains(&p) {
+                visited.push(p);
             }
-            let [u, v] = tops[*p].point(id);
-            points_uv.push((*p, u, v));
-            points.push(eval_f64(patches[*p], u, v));
+            let a = &tops[p].arcs[k];
+            let mut pts = densify(&gs_fast[p], &tops[p], a, DENSIFY_STEPS);
+            if backwards {
+                pts.reverse();
+            }
+            // Each arc starts where the previous one ended: keep that point once.
+            let skip = usize::from(!points_uv.is_empty());
+            points_uv.extend(pts.into_iter().skip(skip).map(|[u, v]| (p, u, v)));
         }
+        let points = points_uv
+            .iter()
+            .map(|&(p, u, v)| eval_f64(patches[p], u, v))
+            .collect();
         curves.push(SilhouetteCurve {
             patches: visited,
             closed,
@@ -484,6 +566,108 @@ impl View {
         match self {
             View::Direction(d) => d.iter().all(|c| c.sign().is_zero()),
             View::Eye(_) => false,
+        }
+    }
+}
+
+/// Undecided regions of one patch, summarised: how many boxes, the hull of their boxes.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct UnresolvedSummary {
+    /// The patch.
+    pub patch: usize,
+    /// The number of unresolved boxes.
+    pub boxes: usize,
+    /// The (u, v) hull `[[u0, v0], [u1, v1]]` of those boxes.
+    pub hull: [[f64; 2]; 2],
+    /// Why (the reason of the first box).
+    pub reason: String,
+}
+
+/// The JSON document of `limn silhouette --format json` (field names are a public contract,
+/// see README).
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct SilhouetteReport {
+    /// The model file.
+    pub model: String,
+    /// `{"dir": [x, y, z]}` or `{"eye": [x, y, z]}`, as f64.
+    pub view: serde_json::Value,
+    /// Whether the whole answer is certified (topology and accuracy). Accuracy of the chords
+    /// is not bounded yet, so this is false.
+    pub certified: bool,
+    /// Whether the topology of every curve is proven (no unresolved region, every join proven).
+    pub topology_certified: bool,
+    /// The curves.
+    pub curves: Vec<SilhouetteCurve>,
+    /// Undecided regions, per patch.
+    pub unresolved: Vec<UnresolvedSummary>,
+    /// Shared edges across which curves could not be joined with proof.
+    pub unjoined_edges: Vec<(usize, Edge, usize, Edge)>,
+    /// Degenerate cases recognised exactly.
+    pub degenerate: Vec<Degenerate>,
+    /// Work done.
+    pub stats: SilhouetteStats,
+}
+
+/// Work counters of a silhouette run.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct SilhouetteStats {
+    /// Boxes examined.
+    pub boxes: usize,
+    /// Sign questions settled at each precision level.
+    pub escalations: Escalations,
+    /// Wall time in milliseconds.
+    pub time_ms: f64,
+    /// Worker threads.
+    pub threads: usize,
+}
+
+impl SilhouetteReport {
+    /// The report of a silhouette run.
+    pub fn new(
+        model: &str,
+        view: &View,
+        s: &Silhouette,
+        time_ms: f64,
+        threads: usize,
+    ) -> SilhouetteReport {
+        let mut per_patch: BTreeMap<usize, UnresolvedSummary> = BTreeMap::new();
+        for (p, cell, reason) in &s.unresolved {
+            let [lo, hi] = cell.to_f64();
+            let e = per_patch.entry(*p).or_insert_with(|| UnresolvedSummary {
+                patch: *p,
+                boxes: 0,
+                hull: [lo, hi],
+                reason: reason.clone(),
+            });
+            e.boxes += 1;
+            for k in 0..2 {
+                e.hull[0][k] = e.hull[0][k].min(lo[k]);
+                e.hull[1][k] = e.hull[1][k].max(hi[k]);
+            }
+        }
+        let v = |x: &[Rational; 3]| x.clone().map(|c| c.to_f64());
+        let view = match view {
+            View::Direction(d) => serde_json::json!({ "dir": v(d) }),
+            View::Eye(e) => serde_json::json!({ "eye": v(e) }),
+        };
+        let topology_certified = s.unresolved.is_empty()
+            && s.unjoined_edges.is_empty()
+            && s.curves.iter().all(|c| c.certified_topology);
+        SilhouetteReport {
+            model: model.to_string(),
+            view,
+            certified: false,
+            topology_certified,
+            curves: s.curves.clone(),
+            unresolved: per_patch.into_values().collect(),
+            unjoined_edges: s.unjoined_edges.clone(),
+            degenerate: s.degenerate.clone(),
+            stats: SilhouetteStats {
+                boxes: s.boxes,
+                escalations: s.escalations.clone(),
+                time_ms,
+                threads,
+            },
         }
     }
 }

@@ -1,0 +1,210 @@
+//! SVG drawings of curves on a model, projected on the view plane.
+
+use super::silhouette::{eval_f64, Silhouette, View};
+use crate::model::Model;
+use std::fmt::Write;
+
+fn norm(v: [f64; 3]) -> [f64; 3] {
+    let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    if l > 0.0 {
+        [v[0] / l, v[1] / l, v[2] / l]
+    } else {
+        v
+    }
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// A projection of space onto the view plane: orthographic along a direction, or central from
+/// an eye towards the model's centre.
+pub struct Projection {
+    eye: Option<[f64; 3]>,
+    forward: [f64; 3],
+    right: [f64; 3],
+    up: [f64; 3],
+}
+
+impl Projection {
+    /// The projection for a view of a model.
+    pub fn new(view: &View, model: &Model) -> Projection {
+        let center = model.bounding_box().map_or([0.0; 3], |[lo, hi]| {
+            [0, 1, 2].map(|k| 0.5 * (lo[k].to_f64() + hi[k].to_f64()))
+        });
+        let (eye, forward) = match view {
+            View::Direction(d) => (None, norm(d.clone().map(|c| c.to_f64()))),
+            View::Eye(e) => {
+                let e = e.clone().map(|c| c.to_f64());
+                (
+                    Some(e),
+                    norm([center[0] - e[0], center[1] - e[1], center[2] - e[2]]),
+                )
+            }
+        };
+        // "Up" is the z axis unless the view is along it.
+        let helper = if forward[2].abs() < 0.9 {
+            [0.0, 0.0, 1.0]
+        } else {
+            [0.0, 1.0, 0.0]
+        };
+        let right = norm(cross(forward, helper));
+        let up = cross(right, forward);
+        Projection {
+            eye,
+            forward,
+            right,
+            up,
+        }
+    }
+
+    /// The 2D image of a point (y up).
+    pub fn project(&self, p: [f64; 3]) -> [f64; 2] {
+        match self.eye {
+            None => [dot(p, self.right), dot(p, self.up)],
+            Some(e) => {
+                let d = [p[0] - e[0], p[1] - e[1], p[2] - e[2]];
+                let depth = dot(d, self.forward).max(1e-12);
+                [dot(d, self.right) / depth, dot(d, self.up) / depth]
+            }
+        }
+    }
+}
+
+/// The silhouette over light patch outlines, as an SVG document. Curves whose topology is
+/// certified are black; others red and dashed; unresolved boxes are marked in red.
+pub fn silhouette_svg(model: &Model, view: &View, s: &Silhouette, title: &str) -> String {
+    let proj = Projection::new(view, model);
+    let mut outlines: Vec<Vec<[f64; 2]>> = Vec::new();
+    for p in &model.patches {
+        for side in 0..4 {
+            let pts: Vec<[f64; 2]> = (0..=16)
+                .map(|k| {
+                    let t = k as f64 / 16.0;
+                    let (u, v) = match side {
+                        0 => (t, 0.0),
+                        1 => (1.0, t),
+                        2 => (1.0 - t, 1.0),
+                        _ => (0.0, 1.0 - t),
+                    };
+                    proj.project(eval_f64(&p.surface, u, v))
+                })
+                .collect();
+            outlines.push(pts);
+        }
+    }
+    let curves: Vec<(bool, Vec<[f64; 2]>)> = s
+        .curves
+        .iter()
+        .map(|c| {
+            (
+                c.certified_topology,
+                c.points.iter().map(|&p| proj.project(p)).collect(),
+            )
+        })
+        .collect();
+    let marks: Vec<[f64; 2]> = s
+        .unresolved
+        .iter()
+        .map(|(p, cell, _)| {
+            let [lo, hi] = cell.to_f64();
+            proj.project(eval_f64(
+                &model.patches[*p].surface,
+                0.5 * (lo[0] + hi[0]),
+                0.5 * (lo[1] + hi[1]),
+            ))
+        })
+        .collect();
+    let all = outlines
+        .iter()
+        .flatten()
+        .chain(curves.iter().flat_map(|c| c.1.iter()));
+    let (mut x0, mut y0, mut x1, mut y1) = (
+        f64::INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for p in all {
+        if p[0].is_finite() && p[1].is_finite() {
+            x0 = x0.min(p[0]);
+            y0 = y0.min(p[1]);
+            x1 = x1.max(p[0]);
+            y1 = y1.max(p[1]);
+        }
+    }
+    if !x0.is_finite() {
+        (x0, y0, x1, y1) = (0.0, 0.0, 1.0, 1.0);
+    }
+    let size = 800.0;
+    let scale = (size - 40.0) / (x1 - x0).max(y1 - y0).max(1e-300);
+    let map = |p: [f64; 2]| {
+        (
+            20.0 + (p[0] - x0) * scale,
+            size - 20.0 - (p[1] - y0) * scale,
+        )
+    };
+    let path = |pts: &[[f64; 2]]| -> String {
+        let mut d = String::new();
+        for (i, p) in pts.iter().enumerate() {
+            let (x, y) = map(*p);
+            let _ = write!(d, "{}{:.2},{:.2} ", if i == 0 { "M" } else { "L" }, x, y);
+        }
+        d
+    };
+    let mut svg = String::new();
+    let _ = writeln!(
+        svg,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{size}" height="{size}" viewBox="0 0 {size} {size}">"#
+    );
+    let _ = writeln!(
+        svg,
+        r#"<title>{}</title><rect width="100%" height="100%" fill="white"/>"#,
+        escape(title)
+    );
+    let _ = writeln!(
+        svg,
+        r##"<g fill="none" stroke="#c8c8c8" stroke-width="0.6">"##
+    );
+    for o in &outlines {
+        let _ = writeln!(svg, r#"<path d="{}"/>"#, path(o));
+    }
+    let _ = writeln!(svg, "</g>");
+    for (certified, c) in &curves {
+        let style = if *certified {
+            r##"stroke="#000" stroke-width="1.8""##
+        } else {
+            r##"stroke="#d00" stroke-width="1.8" stroke-dasharray="6,3""##
+        };
+        let _ = writeln!(svg, r#"<path fill="none" {style} d="{}"/>"#, path(c));
+    }
+    for m in marks.iter().take(2000) {
+        let (x, y) = map(*m);
+        let _ = writeln!(
+            svg,
+            r##"<circle cx="{x:.2}" cy="{y:.2}" r="2" fill="#d00"/>"##
+        );
+    }
+    let _ = writeln!(
+        svg,
+        r##"<text x="10" y="16" font-family="sans-serif" font-size="12" fill="#333">{}</text>"##,
+        escape(title)
+    );
+    svg.push_str("</svg>\n");
+    svg
+}
+
+fn escape(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
