@@ -394,7 +394,7 @@ fn densify(
         };
         let (mut x0, mut x1) = (lo[m], hi[m]);
         let (mut f0, mut f1) = (f(x0), f(x1));
-        if !(f0 * f1 < 0.0) {
+        if f0 * f1 >= 0.0 || f0.is_nan() || f1.is_nan() {
             continue;
         }
         let mut side = 0;
