@@ -148,9 +148,20 @@ where
             ),
             // Anything else: clap's first line ("error: ..."), as one line, exit 2.
             _ => {
+                // clap's message up to the usage block, joined into one line.
                 let text = e.render().to_string();
-                let first = text.lines().next().unwrap_or("invalid arguments");
-                let first = first.strip_prefix("error: ").unwrap_or(first);
+                let message: Vec<&str> = text
+                    .lines()
+                    .map(str::trim)
+                    .take_while(|l| {
+                        !l.starts_with("Usage:")
+                            && !l.starts_with("tip:")
+                            && !l.starts_with("For more")
+                    })
+                    .filter(|l| !l.is_empty())
+                    .collect();
+                let joined = message.join(" ");
+                let first = joined.strip_prefix("error: ").unwrap_or(&joined);
                 CliError::input(format!("{first} (see `limn --help`)"))
             }
         }

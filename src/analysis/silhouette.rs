@@ -219,12 +219,28 @@ pub fn silhouette(
     weld: WeldTolerance,
 ) -> Silhouette {
     let patches: Vec<&RationalPatch> = model.patches.iter().map(|p| &p.surface).collect();
+    let adj = PatchAdjacency::of_patches(&patches, weld);
     let gs: Vec<Bernstein<Rational>> = patches
         .par_iter()
         .map(|p| silhouette_function(p, view))
         .collect();
-    let mut tops: Vec<CurveTopology> = gs.par_iter().map(|g| solve_curve(g, opts)).collect();
-    let adj = PatchAdjacency::of_patches(&patches, weld);
+    // On a collapsed side the normal vanishes, so g has that side's linear factor: divide it
+    // out (exactly), so that the spurious zero set along the side does not meet the real curve
+    // in a singular point. The sign inside the square is unchanged.
+    let solve_gs: Vec<Bernstein<Rational>> = gs
+        .iter()
+        .enumerate()
+        .map(|(i, g)| {
+            let mut g = g.clone();
+            for &(patch, edge, _) in &adj.collapsed {
+                if patch == i {
+                    g = deflate_side(&g, edge);
+                }
+            }
+            g
+        })
+        .collect();
+    let mut tops: Vec<CurveTopology> = solve_gs.par_iter().map(|g| solve_curve(g, opts)).collect();
 
     let mut degenerate = Vec::new();
     let mut unresolved = Vec::new();
@@ -249,28 +265,15 @@ pub fn silhouette(
     let mut joins = Joins {
         parent: BTreeMap::new(),
     };
-    let mut pole_nodes: BTreeMap<usize, Vec<Node>> = BTreeMap::new();
-    for &(patch, edge, vertex) in &adj.collapsed {
+    for &(patch, edge, _) in &adj.collapsed {
         degenerate.push(Degenerate {
             patch,
             kind: "collapsed side",
             side: Some(edge),
         });
-        let t = &mut tops[patch];
-        t.arcs
+        tops[patch]
+            .arcs
             .retain(|a| !(a.reason == "on edge" && both_on(&a.from, &a.to, edge)));
-        for a in &t.arcs {
-            for id in [a.from, a.to] {
-                if side_of(&id).iter().any(|s| s.0 == edge) {
-                    pole_nodes.entry(vertex).or_default().push((patch, id));
-                }
-            }
-        }
-    }
-    for nodes in pole_nodes.values() {
-        for w in nodes.windows(2) {
-            joins.union(w[0], w[1]);
-        }
     }
     // Shared edges: join crossings when the two side polynomials are exactly proportional.
     let mut unjoined = Vec::new();
@@ -284,11 +287,42 @@ pub fn silhouette(
             continue;
         }
         let (a, b) = (class[0], class[1]);
-        if !join_side(&tops, &gs, a, b, &mut joins) {
+        let joined = join_side(&tops, &gs, a, b, &mut joins)
+            || join_zero_side(&mut tops, &gs, a, b, &mut joins);
+        if !joined {
             unjoined.push((a.patch, a.edge, b.patch, b.edge));
         }
     }
     let gs_fast: Vec<Bernstein<f64>> = gs.iter().map(|g| g.convert(Precision::F64)).collect();
+    // Crossings on a collapsed side are its vertex; crossings exactly at a patch corner are the
+    // welded corner vertex: one node per vertex.
+    let mut vertex_nodes: BTreeMap<usize, Vec<Node>> = BTreeMap::new();
+    for &(patch, edge, vertex) in &adj.collapsed {
+        for a in &tops[patch].arcs {
+            for id in [a.from, a.to] {
+                if side_of(&id).iter().any(|s| s.0 == edge) {
+                    vertex_nodes.entry(vertex).or_default().push((patch, id));
+                }
+            }
+        }
+    }
+    for (patch, t) in tops.iter().enumerate() {
+        for a in &t.arcs {
+            for id in [a.from, a.to] {
+                if let Some(k) = corner_index(&id) {
+                    vertex_nodes
+                        .entry(adj.corners[patch][k])
+                        .or_default()
+                        .push((patch, id));
+                }
+            }
+        }
+    }
+    for nodes in vertex_nodes.values() {
+        for w in nodes.windows(2) {
+            joins.union(w[0], w[1]);
+        }
+    }
     let curves = chain_model(&tops, &gs_fast, &patches, &mut joins, &open_boundary);
     Silhouette {
         curves,
@@ -299,6 +333,70 @@ pub fn silhouette(
         boxes,
         escalations,
     }
+}
+
+/// Divides out the linear factor of a side on which `g` vanishes identically (v for V0,
+/// 1 − v for V1, u for U0, 1 − u for U1), as many times as it divides; exact.
+///
+/// In the Bernstein basis of degree n, `t · Σ_j b_j B_{n−1,j} = Σ_j b_{j−1} (j/n) B_{n,j}`, so
+/// if the coefficients with j = 0 vanish, `g = t · ĝ` with `ĝ_j = g_{j+1} · n / (j + 1)`;
+/// symmetrically `(1 − t) · Σ b_j B_{n−1,j} = Σ b_j ((n − j)/n) B_{n,j}`.
+pub fn deflate_side(g: &Bernstein<Rational>, edge: Edge) -> Bernstein<Rational> {
+    let axis = match edge {
+        Edge::U0 | Edge::U1 => 0,
+        Edge::V0 | Edge::V1 => 1,
+    };
+    let low = matches!(edge, Edge::U0 | Edge::V0);
+    let mut g = g.clone();
+    loop {
+        let d = [g.degrees()[0], g.degrees()[1]];
+        let n = d[axis];
+        if n == 0 || g.is_zero() {
+            return g;
+        }
+        // Index [along the other variable i, along `axis` j] in (u, v) order.
+        let at = |i: usize, j: usize| -> [usize; 2] {
+            if axis == 0 {
+                [j, i]
+            } else {
+                [i, j]
+            }
+        };
+        let other = d[1 - axis];
+        let side = if low { 0 } else { n };
+        if (0..=other).any(|i| g.coeff(&at(i, side)).cmp0() != std::cmp::Ordering::Equal) {
+            return g;
+        }
+        let mut nd = d;
+        nd[axis] = n - 1;
+        let mut coeffs = Vec::with_capacity((nd[0] + 1) * (nd[1] + 1));
+        for a in 0..=nd[0] {
+            for b in 0..=nd[1] {
+                let (i, j) = if axis == 0 { (b, a) } else { (a, b) };
+                let c = if low {
+                    Rational::from(g.coeff(&at(i, j + 1)) * n as u64) / (j as u64 + 1)
+                } else {
+                    Rational::from(g.coeff(&at(i, j)) * n as u64) / (n - j) as u64
+                };
+                coeffs.push(c);
+            }
+        }
+        g = Bernstein::new(&nd, coeffs).expect("degrees match");
+    }
+}
+
+/// Which corner of the patch a crossing is at: 0 = (0,0), 1 = (1,0), 2 = (1,1), 3 = (0,1).
+fn corner_index(id: &CrossingId) -> Option<usize> {
+    let CrossingId::Exact { u, v } = *id else {
+        return None;
+    };
+    let end = |x: Dyadic| x == Dyadic::ZERO || x == Dyadic::ONE;
+    (end(u) && end(v)).then(|| match (u == Dyadic::ONE, v == Dyadic::ONE) {
+        (false, false) => 0,
+        (true, false) => 1,
+        (true, true) => 2,
+        (false, true) => 3,
+    })
 }
 
 fn both_on(a: &CrossingId, b: &CrossingId, edge: Edge) -> bool {
@@ -379,7 +477,16 @@ fn densify(
     let m = match a.reason {
         "graph over v" => 0,
         "graph over u" => 1,
-        _ => return vec![p0, p1],
+        // Along an edge where g vanishes: every point of the segment is on the curve.
+        _ => {
+            let n = 4 * steps;
+            return (0..=n)
+                .map(|i| {
+                    let s = i as f64 / n as f64;
+                    [p0[0] + (p1[0] - p0[0]) * s, p0[1] + (p1[1] - p0[1]) * s]
+                })
+                .collect();
+        }
     };
     let o = 1 - m;
     let [lo, hi] = a.cell.to_f64();
@@ -425,6 +532,83 @@ fn densify(
     }
     pts.push(p1);
     pts
+}
+
+/// The point of a side at parameter t, in the patch's (u, v).
+fn side_point(edge: Edge, t: Dyadic) -> CrossingId {
+    let (u, v) = match edge {
+        Edge::V0 => (t, Dyadic::ZERO),
+        Edge::V1 => (t, Dyadic::ONE),
+        Edge::U0 => (Dyadic::ZERO, t),
+        Edge::U1 => (Dyadic::ONE, t),
+    };
+    CrossingId::Exact { u, v }
+}
+
+/// Joins a shared edge on which both silhouette functions vanish identically: the edge is
+/// part of the silhouette, exactly. Both patches' arcs along it are replaced by one chain
+/// (kept in patch `a`) through all their points, and `b`'s crossings on the edge are joined to
+/// `a`'s at the same (exact, dyadic) parameter (`proofs/silhouette-join.md`).
+fn join_zero_side(
+    tops: &mut [CurveTopology],
+    gs: &[Bernstein<Rational>],
+    a: SideUse,
+    b: SideUse,
+    joins: &mut Joins,
+) -> bool {
+    if !side_polynomial(&gs[a.patch], a.edge).is_zero()
+        || !side_polynomial(&gs[b.patch], b.edge).is_zero()
+    {
+        return false;
+    }
+    let reversed = a.reversed != b.reversed;
+    let param = |id: &CrossingId, edge: Edge| -> Option<Dyadic> {
+        side_of(id)
+            .into_iter()
+            .find(|s| s.0 == edge)
+            .filter(|s| s.1 == s.2)
+            .map(|s| s.1)
+    };
+    let mut ts = vec![Dyadic::ZERO, Dyadic::ONE];
+    let mut b_nodes = Vec::new();
+    for (patch, edge, is_b) in [(a.patch, a.edge, false), (b.patch, b.edge, true)] {
+        for arc in &tops[patch].arcs {
+            for id in [arc.from, arc.to] {
+                if let Some(t) = param(&id, edge) {
+                    let ta = if is_b && reversed { t.one_minus() } else { t };
+                    ts.push(ta);
+                    if is_b {
+                        b_nodes.push((id, ta));
+                    }
+                }
+            }
+        }
+        tops[patch]
+            .arcs
+            .retain(|arc| !(arc.reason == "on edge" && both_on(&arc.from, &arc.to, edge)));
+    }
+    ts.sort();
+    ts.dedup();
+    let ta = &mut tops[a.patch];
+    for w in ts.windows(2) {
+        let (from, to) = (side_point(a.edge, w[0]), side_point(a.edge, w[1]));
+        for id in [from, to] {
+            if let CrossingId::Exact { u, v } = id {
+                let p = [u.to_f64(), v.to_f64()];
+                ta.locations.insert(id, [p, p]);
+            }
+        }
+        ta.arcs.push(crate::solver::curve2::Arc {
+            from,
+            to,
+            cell: crate::solver::DyadicBox::UNIT,
+            reason: "on edge",
+        });
+    }
+    for (id, t) in b_nodes {
+        joins.union((b.patch, id), (a.patch, side_point(a.edge, t)));
+    }
+    true
 }
 
 fn chain_model(

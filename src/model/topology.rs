@@ -239,6 +239,8 @@ pub struct PatchAdjacency {
     pub collapsed: Vec<(usize, Edge, usize)>,
     /// The number of distinct corner vertices.
     pub corner_vertices: usize,
+    /// Per patch, the vertex ids of its corners S(0,0), S(1,0), S(1,1), S(0,1).
+    pub corners: Vec<[usize; 4]>,
     /// The largest coordinate difference welded (0 if exact).
     pub max_weld_gap: f64,
 }
@@ -258,7 +260,9 @@ impl PatchAdjacency {
         let mut order: Vec<((usize, usize), usize)> = Vec::new();
         let mut collapsed_sides = Vec::new();
         let mut max_gap = 0.0f64;
+        let mut corners = Vec::with_capacity(patches.len());
         for (pi, patch) in patches.iter().enumerate() {
+            corners.push(patch.corners().map(|c| welder.vertex(c)));
             for edge in Edge::ALL {
                 let side = patch.edge(edge);
                 let a = welder.vertex(side[0].0);
@@ -305,6 +309,7 @@ impl PatchAdjacency {
             edges,
             collapsed: collapsed_sides,
             corner_vertices: used.len(),
+            corners,
             max_weld_gap: max_gap.max(welder.max_gap),
         }
     }

@@ -63,6 +63,11 @@ impl Dyadic {
         (e <= MAX_DEPTH).then(|| Dyadic::new((self.at(e) + other.at(e)) / 2, e))
     }
 
+    /// `1 − self` (exact).
+    pub fn one_minus(self) -> Dyadic {
+        Dyadic::new((1u64 << self.exp) - self.num, self.exp)
+    }
+
     /// The exact value.
     pub fn to_rational(self) -> Rational {
         Rational::from((

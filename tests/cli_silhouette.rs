@@ -1,0 +1,231 @@
+//! `limn silhouette`: the JSON contract on an exact model, output files, bad arguments.
+
+use limn::number::Rational;
+use limn::testing::shapes;
+use serde_json::Value;
+use std::path::PathBuf;
+use std::process::Command;
+
+fn limn(args: &[&str]) -> (Option<i32>, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_limn"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("run limn");
+    (
+        out.status.code(),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli_silhouette");
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+/// The exact sphere of radius 2 as a native JSON model, numbers written as exact fractions.
+fn sphere_json() -> PathBuf {
+    let patches: Vec<Value> = shapes::sphere(&Rational::from(2))
+        .iter()
+        .map(|p| {
+            serde_json::json!({
+                "kind": "bezier",
+                "degree": p.degree(),
+                "points": p.points().iter().map(|q| q.iter().map(|c| c.to_string()).collect::<Vec<_>>()).collect::<Vec<_>>(),
+                "weights": p.weights().iter().map(|w| w.to_string()).collect::<Vec<_>>(),
+            })
+        })
+        .collect();
+    let path = tmp("sphere.json");
+    std::fs::write(&path, serde_json::json!({ "patches": patches }).to_string()).unwrap();
+    path
+}
+
+#[test]
+fn sphere_silhouette_json_contract() {
+    let model = sphere_json();
+    let (code, out, err) = limn(&[
+        "silhouette",
+        model.to_str().unwrap(),
+        "--dir",
+        "1,-2,3",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(code, Some(0), "{err}");
+    let v: Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(
+        v["certified"], false,
+        "accuracy is not certified yet, and says so"
+    );
+    assert_eq!(v["topology_certified"], true);
+    let curves = v["curves"].as_array().unwrap();
+    assert_eq!(curves.len(), 1);
+    let c = &curves[0];
+    assert_eq!(c["closed"], true);
+    assert_eq!(c["certified_topology"], true);
+    // Every drawn point lies on the sphere's silhouette x - 2y + 3z = 0 (to drawing accuracy).
+    for p in c["points"].as_array().unwrap() {
+        let p: Vec<f64> = p
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect();
+        assert!((p[0] - 2.0 * p[1] + 3.0 * p[2]).abs() < 1e-6, "{p:?}");
+        assert!(((p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt() - 2.0).abs() < 1e-9);
+    }
+    assert_eq!(
+        c["points"].as_array().unwrap().len(),
+        c["points_uv"].as_array().unwrap().len()
+    );
+    for key in [
+        "unresolved",
+        "unjoined_edges",
+        "degenerate",
+        "stats",
+        "view",
+        "model",
+    ] {
+        assert!(v.get(key).is_some(), "missing {key}");
+    }
+    assert_eq!(
+        v["stats"]["escalations"]["exact"].as_u64().unwrap()
+            + v["stats"]["escalations"]["undecided"].as_u64().unwrap(),
+        v["stats"]["escalations"]["exact"].as_u64().unwrap()
+    );
+}
+
+#[test]
+fn output_files_are_not_overwritten_without_force() {
+    let out = tmp("teapot.svg");
+    let _ = std::fs::remove_file(&out);
+    let o = out.to_str().unwrap();
+    let (code, _, err) = limn(&[
+        "silhouette",
+        "fixtures/bezier/teapot.bpt",
+        "--dir",
+        "1,2,3",
+        "--format",
+        "svg",
+        "-o",
+        o,
+    ]);
+    assert_eq!(code, Some(0), "{err}");
+    let svg = std::fs::read_to_string(&out).unwrap();
+    assert!(svg.starts_with("<svg") && svg.contains("topology certified"));
+    std::fs::write(&out, "mine").unwrap();
+    let (code, _, err) = limn(&[
+        "silhouette",
+        "fixtures/bezier/teapot.bpt",
+        "--dir",
+        "1,2,3",
+        "--format",
+        "svg",
+        "-o",
+        o,
+    ]);
+    assert_eq!(code, Some(2));
+    assert!(err.contains("not overwritten"), "{err}");
+    assert_eq!(
+        std::fs::read_to_string(&out).unwrap(),
+        "mine",
+        "the user's file is untouched"
+    );
+    let (code, _, _) = limn(&[
+        "silhouette",
+        "fixtures/bezier/teapot.bpt",
+        "--dir",
+        "1,2,3",
+        "--format",
+        "svg",
+        "-o",
+        o,
+        "--force",
+    ]);
+    assert_eq!(code, Some(0));
+    assert!(std::fs::read_to_string(&out).unwrap().starts_with("<svg"));
+}
+
+#[test]
+fn bad_view_arguments_are_one_line_exit_2() {
+    for (args, needle) in [
+        (
+            &["silhouette", "fixtures/bezier/teapot.bpt", "--dir", "0,0,0"][..],
+            "zero vector",
+        ),
+        (
+            &["silhouette", "fixtures/bezier/teapot.bpt", "--dir", "1,2"],
+            "three numbers",
+        ),
+        (
+            &["silhouette", "fixtures/bezier/teapot.bpt", "--dir", "1,x,2"],
+            "not a number",
+        ),
+        (&["silhouette", "fixtures/bezier/teapot.bpt"], "--dir"),
+        (
+            &[
+                "silhouette",
+                "fixtures/bezier/teapot.bpt",
+                "--dir",
+                "1,2,3",
+                "--eye",
+                "0,0,9",
+            ],
+            "cannot be used with",
+        ),
+        (
+            &[
+                "silhouette",
+                "fixtures/bezier/teapot.bpt",
+                "--dir",
+                "1,2,3",
+                "--max-depth",
+                "99",
+            ],
+            "--max-depth",
+        ),
+        (
+            &[
+                "silhouette",
+                "fixtures/bezier/teapot.bpt",
+                "--dir",
+                "1,2,3",
+                "--threads",
+                "0",
+            ],
+            "--threads",
+        ),
+        (
+            &["silhouette", "no/such/file.bpt", "--dir", "1,2,3"],
+            "no/such/file.bpt",
+        ),
+    ] {
+        let (code, out, err) = limn(args);
+        assert_eq!(code, Some(2), "{args:?}: {err}");
+        assert_eq!(err.lines().count(), 1, "{args:?}: {err}");
+        assert!(err.contains(needle), "{args:?}: {err}");
+        assert!(out.is_empty());
+    }
+}
+
+#[test]
+fn perspective_text_summary() {
+    let model = sphere_json();
+    let (code, out, err) = limn(&[
+        "silhouette",
+        model.to_str().unwrap(),
+        "--eye",
+        "1,2,9",
+        "--threads",
+        "1",
+    ]);
+    assert_eq!(code, Some(0), "{err}");
+    assert!(
+        out.contains("curves: 1 (1 closed); topology certified"),
+        "{out}"
+    );
+    assert!(out.contains("8 x collapsed side"), "{out}");
+}
