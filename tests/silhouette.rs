@@ -159,3 +159,60 @@ fn thread_count_does_not_change_the_answer() {
     let (a, b) = (run(1), run(2));
     assert_eq!(a.curves, b.curves);
 }
+
+#[test]
+fn axis_views_along_patch_edges_and_through_poles_are_certified() {
+    // Along z the silhouette is the equator, which is exactly the shared edge between the
+    // southern and northern patches; along x or y it is a great circle running along meridian
+    // edges and through both poles (collapsed sides).
+    let m = model(shapes::sphere(&q(1, 1)));
+    for (x, y, z) in [(0, 0, 1), (1, 0, 0), (0, 1, 0), (1, 1, 0), (1, 2, 0)] {
+        let s = silhouette(
+            &m,
+            &dir(x, y, z),
+            &CurveOptions::default(),
+            WeldTolerance::Exact,
+        );
+        assert!(
+            s.unresolved.is_empty(),
+            "({x},{y},{z}): {:?}",
+            s.unresolved.len()
+        );
+        assert!(
+            s.unjoined_edges.is_empty(),
+            "({x},{y},{z}): {:?}",
+            s.unjoined_edges
+        );
+        assert_eq!(s.curves.len(), 1, "({x},{y},{z})");
+        assert!(
+            s.curves[0].closed && s.curves[0].certified_topology,
+            "({x},{y},{z})"
+        );
+        // Drawing points lie on the great circle.
+        for p in &s.curves[0].points {
+            let d = p[0] * x as f64 + p[1] * y as f64 + p[2] * z as f64;
+            assert!(d.abs() < 1e-6, "({x},{y},{z}): {p:?}");
+        }
+        assert!(s.boxes < 200, "({x},{y},{z}): {} boxes", s.boxes);
+    }
+}
+
+#[test]
+fn deflation_divides_exactly() {
+    use limn::analysis::silhouette::deflate_side;
+    use limn::bernstein::Bernstein;
+    use limn::surface::Edge;
+    // g = v (1 - u) (u + 2v - 1/3): vanishes on v = 0 and u = 1.
+    let lin = |c: [i64; 4]| Bernstein::new(&[1, 1], c.iter().map(|&k| q(k, 3)).collect()).unwrap();
+    let v = lin([0, 3, 0, 3]);
+    let one_minus_u = lin([3, 3, 0, 0]);
+    let h = lin([-1, 5, 2, 8]);
+    let g = &(&v * &one_minus_u) * &h;
+    let d = deflate_side(&deflate_side(&g, Edge::V0), Edge::U1);
+    // What is left is h (up to the degree it is written in).
+    let x = [q(2, 7), q(3, 11)];
+    assert_eq!(d.eval(&x), h.eval(&x));
+    assert_eq!(d.reduce_degree_exact(), h.reduce_degree_exact());
+    // A side on which g does not vanish is left alone.
+    assert_eq!(deflate_side(&h, Edge::V0), h);
+}
