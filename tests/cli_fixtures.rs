@@ -173,3 +173,38 @@ fn json_model_with_a_nurbs_surface() {
     assert_eq!(topo(&v, "boundary_edges"), 6);
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn obj_negative_indices_count_from_the_vertices_so_far() {
+    let path = std::env::temp_dir().join(format!("limn-obj-{}.obj", std::process::id()));
+    std::fs::write(
+        &path,
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\nv 0 0 1\nv 1 0 1\nv 0 1 1\nf -3 -2 -1\n",
+    )
+    .unwrap();
+    let v = info(path.to_str().unwrap(), &[]);
+    let m = &v["meshes"][0];
+    assert_eq!(m["vertices"], 6);
+    assert_eq!(m["components"], 2);
+    assert_eq!(m["closed"], false);
+    std::fs::remove_file(&path).ok();
+}
+
+#[test]
+fn welding_never_merges_points_beyond_the_f64_range() {
+    let path = std::env::temp_dir().join(format!("limn-far-{}.json", std::process::id()));
+    let sq = |z: &str| {
+        format!(
+            r#"{{"kind":"bezier","degree":[1,1],"points":[[0,0,"{z}"],[0,1,"{z}"],[1,0,"{z}"],[1,1,"{z}"]]}}"#
+        )
+    };
+    std::fs::write(
+        &path,
+        format!(r#"{{"patches":[{},{}]}}"#, sq("1e400"), sq("2e400")),
+    )
+    .unwrap();
+    let v = info(path.to_str().unwrap(), &["--weld", "1e-6"]);
+    assert_eq!(v["topology"]["shared_edges"], 0);
+    assert_eq!(v["topology"]["closed"], false);
+    std::fs::remove_file(&path).ok();
+}

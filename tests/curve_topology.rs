@@ -196,6 +196,16 @@ mod fuzz {
             for b in &t.branches {
                 prop_assert!(!b.crossings.is_empty());
             }
+            // Certified means: every branch complete, and every crossing joins at most two arcs.
+            let mut degree = std::collections::BTreeMap::new();
+            for a in &t.arcs {
+                *degree.entry(a.from).or_insert(0) += 1;
+                *degree.entry(a.to).or_insert(0) += 1;
+            }
+            prop_assert!(degree.values().all(|&d| d <= 2), "a crossing of degree > 2");
+            if t.is_certified() {
+                prop_assert!(t.branches.iter().all(|b| b.complete), "certified but incomplete: {:?}", t.branches);
+            }
             for a in &t.arcs {
                 let [lo, hi] = a.cell.to_f64();
                 for id in [a.from, a.to] {
@@ -204,5 +214,72 @@ mod fuzz {
                 }
             }
         }
+    }
+}
+
+/// Regressions found in review: a crossing renamed by refinement in one box only (which split
+/// one component in two while claiming certification), one-point components on the square's
+/// boundary, and a curve along a grid line cut into several atomic segments.
+mod review_regressions {
+    use super::*;
+
+    fn line(a: (i64, i64), b: (i64, i64), c: (i64, i64)) -> Bernstein<Rational> {
+        from_monomials(
+            1,
+            &[
+                ((1, 0), q(a.0, a.1)),
+                ((0, 1), q(b.0, b.1)),
+                ((0, 0), q(c.0, c.1)),
+            ],
+        )
+    }
+
+    #[test]
+    fn refinement_keeps_canonical_names() {
+        // (u − 2v − 1/8)(u − 2v − 1): an open segment from (1/8, 0) to (1, 7/16), and the
+        // second line meets the square only at the corner (1, 0).
+        let g = &line((1, 1), (-2, 1), (-1, 8)) * &line((1, 1), (-2, 1), (-1, 1));
+        let t = solve_curve(&g, &CurveOptions::default());
+        assert!(t.is_certified(), "{:?}", t.unresolved);
+        assert_eq!(t.branches.len(), 2, "{:#?}", t.branches);
+        assert!(t.branches.iter().all(|b| b.complete && !b.closed));
+        assert_eq!(
+            t.branches.iter().filter(|b| b.crossings.len() == 1).count(),
+            1
+        );
+        crossings_are_on_the_curve(&g, &t);
+    }
+
+    #[test]
+    fn one_point_components_on_the_boundary() {
+        // u + v = 0 meets the square only at (0, 0).
+        let t = solve_curve(&line((1, 1), (1, 1), (0, 1)), &CurveOptions::default());
+        assert!(t.is_certified());
+        assert_eq!(t.branches.len(), 1);
+        assert_eq!(
+            t.branches[0].crossings,
+            vec![CrossingId::Exact {
+                u: limn::solver::Dyadic::ZERO,
+                v: limn::solver::Dyadic::ZERO
+            }]
+        );
+        // A circle outside the square, tangent to u = 0 at (0, 1/2).
+        let g = circle(&q(-1, 2), &q(1, 2), &q(1, 4), 2);
+        let t = solve_curve(&g, &CurveOptions::default());
+        assert!(t.is_certified());
+        assert_eq!(t.branches.len(), 1, "{:#?}", t.branches);
+        assert_eq!(t.branches[0].crossings.len(), 1);
+        crossings_are_on_the_curve(&g, &t);
+    }
+
+    #[test]
+    fn a_line_on_a_grid_line_next_to_a_circle() {
+        // (u − 1/2)((u − 7/8)² + (v − 1/4)² − 1/64): the line and the circle do not meet.
+        let g = &line((1, 1), (0, 1), (-1, 2)) * &circle(&q(7, 8), &q(1, 4), &q(1, 64), 2);
+        let t = solve_curve(&g, &CurveOptions::default());
+        assert!(t.is_certified(), "{:?}", t.unresolved);
+        assert_eq!(t.branches.len(), 2, "{:#?}", t.branches);
+        assert_eq!(t.branches.iter().filter(|b| b.closed).count(), 1);
+        assert!(t.branches.iter().all(|b| b.complete));
     }
 }

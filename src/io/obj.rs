@@ -60,16 +60,17 @@ pub(super) fn read(name: &str, text: &str) -> Result<Model, ReadError> {
                         format!("a face needs at least 3 vertices, found {}", face.len()),
                     ));
                 }
-                face_lines.push((line, face));
+                // Negative indices count back from the vertices defined so far (OBJ spec).
+                face_lines.push((line, face, mesh.vertices.len() as i64));
             }
             _ => {}
         }
     }
     let n = mesh.vertices.len() as i64;
-    for (line, face) in face_lines {
+    for (line, face, so_far) in face_lines {
         let mut f = Vec::with_capacity(face.len());
         for k in face {
-            let i = if k > 0 { k - 1 } else { n + k };
+            let i = if k > 0 { k - 1 } else { so_far + k };
             if k == 0 || i < 0 || i >= n {
                 return Err(err(
                     line,

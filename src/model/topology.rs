@@ -117,8 +117,17 @@ fn approx(p: &Point3) -> [f64; 3] {
     [p[0].to_f64(), p[1].to_f64(), p[2].to_f64()]
 }
 
+/// The max-norm distance; infinite if it cannot be computed (coordinates beyond f64).
 fn gap(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    (0..3).map(|k| (a[k] - b[k]).abs()).fold(0.0, f64::max)
+    let d = (0..3).map(|k| (a[k] - b[k]).abs());
+    let mut g = 0.0f64;
+    for x in d {
+        if x.is_nan() {
+            return f64::INFINITY;
+        }
+        g = g.max(x);
+    }
+    g
 }
 
 impl Welder {
@@ -200,7 +209,7 @@ fn points_match(a: &Side, b: &Side, tol: WeldTolerance, reversed: bool, max_gap:
                 let (q, v) = pick(i);
                 g = g.max(gap(&approx(p), &approx(q)));
                 let r = (w.to_f64() * pick(0).1.to_f64()) / (v.to_f64() * a[0].1.to_f64());
-                if g > t || (r - 1.0).abs() > t.max(1e-12) {
+                if !(g <= t && (r - 1.0).abs() <= t.max(1e-12)) {
                     return false;
                 }
             }
@@ -214,7 +223,9 @@ fn collapsed(side: &Side, tol: WeldTolerance) -> bool {
     let p0 = side[0].0;
     match tol {
         WeldTolerance::Exact => side.iter().all(|(p, _)| *p == p0),
-        WeldTolerance::Absolute(t) => side.iter().all(|(p, _)| gap(&approx(p), &approx(p0)) <= t),
+        WeldTolerance::Absolute(t) => side.iter().all(|(p, _)| {
+            gap(&approx(p), &approx(p0)) <= t && p.iter().all(|c| c.to_f64().is_finite())
+        }),
     }
 }
 

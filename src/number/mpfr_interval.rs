@@ -96,6 +96,10 @@ impl Number for MpInterval {
     fn mul(&self, rhs: &Self) -> Self {
         let p = self.prec_with(rhs);
         let corner = |a: &Float, b: &Float, round: Round| {
+            if a.is_zero() || b.is_zero() {
+                // Interval convention: 0 × anything (even an infinite bound) is 0.
+                return Float::new(p);
+            }
             let mut x = Float::with_val(p, a); // exact: p >= a.prec()
             x.mul_assign_round(b, round);
             x
@@ -147,7 +151,9 @@ impl Number for MpInterval {
     }
 
     fn sign(&self) -> Sign {
-        if self.lo.is_sign_positive() && !self.lo.is_zero() {
+        if self.lo.is_nan() || self.hi.is_nan() {
+            Sign::Unknown
+        } else if self.lo.is_sign_positive() && !self.lo.is_zero() {
             Sign::Positive
         } else if self.hi.is_sign_negative() && !self.hi.is_zero() {
             Sign::Negative

@@ -164,3 +164,16 @@ fn parse_then_enclose() {
     assert!(m.contains_rational(&q));
     assert_eq!(m.precision(), Precision(200));
 }
+
+#[test]
+fn mpfr_interval_zero_times_unbounded_is_zero() {
+    use rug::Float;
+    let whole = MpInterval::try_new(
+        Float::with_val(64, f64::NEG_INFINITY),
+        Float::with_val(64, f64::INFINITY),
+    )
+    .unwrap();
+    let zero = MpInterval::from_i64(0, Precision(64));
+    assert_eq!(zero.mul(&whole).sign(), Sign::Zero);
+    assert_eq!(whole.add(&whole).sign(), Sign::Unknown);
+}

@@ -318,7 +318,7 @@ impl<'a> Lines<'a> {
         if let Some(r) = self.segments.get(&(fixed, c, s0, s1)) {
             return r.clone();
         }
-        let depth = self.opts.max_depth + 16;
+        let depth = self.opts.max_depth.saturating_add(16);
         let ladder = self.opts.ladder;
         let p = self.poly(fixed, c).clone();
         let mut stats = Escalations::default();
@@ -429,6 +429,7 @@ pub fn solve_curve(g: &Bernstein<Rational>, opts: &CurveOptions) -> CurveTopolog
 
     // Phase 3: the arcs of each monotone box.
     let mut arcs: Vec<Arc> = Vec::new();
+    let mut touches: Touches = Vec::new();
     for (cell, leaf) in &leaves {
         match *leaf {
             Leaf::Excluded => {}
@@ -436,7 +437,7 @@ pub fn solve_curve(g: &Bernstein<Rational>, opts: &CurveOptions) -> CurveTopolog
                 cell: *cell,
                 reason: reason.to_string(),
             }),
-            Leaf::Graph { m } => match graph_box_arcs(&mut lines, *cell, m) {
+            Leaf::Graph { m } => match graph_box_arcs(&mut lines, *cell, m, &mut touches) {
                 Ok(mut a) => arcs.append(&mut a),
                 Err(reason) => out.unresolved.push(Unresolved {
                     cell: *cell,
@@ -449,9 +450,27 @@ pub fn solve_curve(g: &Bernstein<Rational>, opts: &CurveOptions) -> CurveTopolog
     let mut seen = BTreeSet::new();
     arcs.retain(|a| a.reason != "on edge" || seen.insert((a.from.min(a.to), a.from.max(a.to))));
 
+    // One-point components: a point where the curve touches the boundary of the square from
+    // outside, on no arc and passed through by none.
+    let on_arcs: BTreeSet<CrossingId> = arcs.iter().flat_map(|a| [a.from, a.to]).collect();
+    let passed: BTreeSet<CrossingId> = touches.iter().filter(|t| !t.1).map(|t| t.0).collect();
+    let mut points: Vec<CrossingId> = touches
+        .iter()
+        .filter(|(id, isolated)| {
+            *isolated && on_square_boundary(id) && !on_arcs.contains(id) && !passed.contains(id)
+        })
+        .map(|t| t.0)
+        .collect();
+    points.sort();
+    points.dedup();
+
     // Phase 4: locations of crossings, refined.
-    for a in &arcs {
-        for id in [a.from, a.to] {
+    for id in arcs
+        .iter()
+        .flat_map(|a| [a.from, a.to])
+        .chain(points.iter().copied())
+    {
+        {
             if let std::collections::btree_map::Entry::Vacant(slot) = out.locations.entry(id) {
                 slot.insert(locate(&mut lines, id));
             }
@@ -462,6 +481,11 @@ pub fn solve_curve(g: &Bernstein<Rational>, opts: &CurveOptions) -> CurveTopolog
 
     // Phase 5: chain arcs into branches.
     out.branches = chain(&arcs);
+    out.branches.extend(points.into_iter().map(|id| Branch {
+        crossings: vec![id],
+        closed: false,
+        complete: true,
+    }));
     out.arcs = arcs;
     out
 }
@@ -470,8 +494,8 @@ pub fn solve_curve(g: &Bernstein<Rational>, opts: &CurveOptions) -> CurveTopolog
 fn locate(lines: &mut Lines, id: CrossingId) -> [[f64; 2]; 2] {
     match id {
         CrossingId::Exact { u, v } => {
-            let p = [u.to_f64(), v.to_f64()];
-            [p, p]
+            let ((u0, u1), (v0, v1)) = (u.to_f64_bounds(), v.to_f64_bounds());
+            [[u0, v0], [u1, v1]]
         }
         CrossingId::Segment {
             fixed,
@@ -492,15 +516,15 @@ fn locate(lines: &mut Lines, id: CrossingId) -> [[f64; 2]; 2] {
                         &mut stats,
                     );
                     lines.stats.merge(&stats);
-                    (fine.lo().to_f64(), fine.hi().to_f64())
+                    (fine.lo().to_f64_bounds().0, fine.hi().to_f64_bounds().1)
                 }
-                _ => (s0.to_f64(), s1.to_f64()),
+                _ => (s0.to_f64_bounds().0, s1.to_f64_bounds().1),
             };
-            let cf = c.to_f64();
+            let (c0, c1) = c.to_f64_bounds();
             if fixed == 0 {
-                [[cf, lo], [cf, hi]]
+                [[c0, lo], [c1, hi]]
             } else {
-                [[lo, cf], [hi, cf]]
+                [[lo, c0], [hi, c1]]
             }
         }
     }
@@ -602,7 +626,15 @@ fn o_edge_crossing(
 }
 
 /// The arcs in a box where g is strictly monotone along `m` (a graph over the other variable).
-fn graph_box_arcs(lines: &mut Lines, cell: DyadicBox, m: usize) -> Result<Vec<Arc>, String> {
+/// Touch points met in a monotone box: (crossing, isolated in this box).
+type Touches = Vec<(CrossingId, bool)>;
+
+fn graph_box_arcs(
+    lines: &mut Lines,
+    cell: DyadicBox,
+    m: usize,
+    touches: &mut Touches,
+) -> Result<Vec<Arc>, String> {
     let o = 1 - m;
     let (o_lo, o_hi) = (cell.lo[o], cell.hi[o]);
     let reason = if m == 0 {
@@ -615,8 +647,10 @@ fn graph_box_arcs(lines: &mut Lines, cell: DyadicBox, m: usize) -> Result<Vec<Ar
     // Separate the events: they may touch only where both are open root intervals (whose
     // ends are roots of neither function); otherwise the gap between them must be nonempty.
     let is_open = |e: &Event| !e.zero && e.lo < e.hi;
-    let conflict =
-        |x: &Event, y: &Event| x.hi > y.lo || (x.hi == y.lo && !(is_open(x) && is_open(y)));
+    // Two zero segments may also touch (consecutive atomic segments on which g vanishes).
+    let conflict = |x: &Event, y: &Event| {
+        x.hi > y.lo || (x.hi == y.lo && !(is_open(x) && is_open(y)) && !(x.zero && y.zero))
+    };
     for _ in 0..64 {
         events.sort_by_key(|e| (e.lo, e.hi));
         let Some(i) = (1..events.len()).find(|&i| conflict(&events[i - 1], &events[i])) else {
@@ -638,12 +672,10 @@ fn graph_box_arcs(lines: &mut Lines, cell: DyadicBox, m: usize) -> Result<Vec<Ar
                 );
                 lines.stats.merge(&stats);
                 if (r.lo(), r.hi()) != (e.lo, e.hi) {
+                    // Narrow the interval only: the crossing keeps its canonical (atomic
+                    // segment) name, which the neighbouring box uses too.
                     events[j].lo = r.lo();
                     events[j].hi = r.hi();
-                    if let Root::At { t } = r {
-                        let (u, v) = uv(fixed, c, t);
-                        events[j].id = CrossingId::Exact { u, v };
-                    }
                     refined = true;
                 }
             }
@@ -736,8 +768,13 @@ fn graph_box_arcs(lines: &mut Lines, cell: DyadicBox, m: usize) -> Result<Vec<Ar
                 });
                 start = None;
             }
-            // Passing through (a touch of the edge), or an isolated touch point: nothing.
-            _ => {}
+            // Passing through (a touch of the edge from inside), or a point where the curve
+            // touches the edge from outside: no arc here, but remember it (on the boundary of
+            // the square there is no neighbour to carry it).
+            (s, _, _) => touches.push((
+                e.id,
+                s.is_none() && before != Some(true) && after != Some(true),
+            )),
         }
     }
     if let Some(s) = start {
@@ -754,6 +791,15 @@ fn graph_box_arcs(lines: &mut Lines, cell: DyadicBox, m: usize) -> Result<Vec<Ar
         }
     }
     Ok(arcs)
+}
+
+/// Whether a crossing lies on the boundary of the unit square.
+fn on_square_boundary(id: &CrossingId) -> bool {
+    let end = |x: Dyadic| x == Dyadic::ZERO || x == Dyadic::ONE;
+    match *id {
+        CrossingId::Exact { u, v } => end(u) || end(v),
+        CrossingId::Segment { c, .. } => end(c),
+    }
 }
 
 /// Chains arcs into branches through shared crossings.

@@ -81,6 +81,20 @@ impl Dyadic {
         self.num as f64 / (2f64).powi(self.exp as i32)
     }
 
+    /// Bounds `(lo, hi)` in f64 containing the value (equal when it is exact in f64).
+    pub fn to_f64_bounds(self) -> (f64, f64) {
+        if self.num < 1u64 << 53 {
+            let x = self.to_f64();
+            (x, x)
+        } else {
+            let i = <crate::number::Interval as Number>::from_rational(
+                &self.to_rational(),
+                Precision::F64,
+            );
+            (i.lo(), i.hi())
+        }
+    }
+
     /// The value in any number type (exact for exact types, enclosed otherwise).
     pub fn to_number<N: Number>(self, prec: Precision) -> N {
         N::from_rational(&self.to_rational(), prec)

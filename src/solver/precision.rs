@@ -117,7 +117,10 @@ impl Ladder {
                 stats.record(Some(Level::Mpfr(p)));
                 return (Some(a), Some(Level::Mpfr(p)));
             }
-            p = p.saturating_mul(2);
+            match p.checked_mul(2) {
+                Some(next) => p = next,
+                None => break,
+            }
         }
         if self.exact {
             if let Some(a) = q.answer_in::<Rational>(Precision(u32::MAX)) {

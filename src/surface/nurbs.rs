@@ -326,6 +326,10 @@ fn de_boor(p: usize, knots: &[Rational], points: &[Hom], u: &Rational) -> Hom {
     while k + 1 < n && knots[k + 1] <= *u {
         k += 1;
     }
+    // At the end of the domain the span found may be empty: use the last nonempty one.
+    while k > p && knots[k] == knots[k + 1] {
+        k -= 1;
+    }
     let mut d: Vec<Hom> = (0..=p).map(|j| points[j + k - p].clone()).collect();
     for r in 1..=p {
         for j in (r..=p).rev() {
@@ -401,6 +405,25 @@ mod tests {
                 );
             }
         }
+    }
+
+    #[test]
+    fn evaluation_at_the_domain_end_with_a_repeated_end_knot() {
+        // Knots [0, 0, 1, 1, 1] for degree 1: the last span is empty.
+        let k = |v: &[i64]| v.iter().map(|&x| q(x, 1)).collect::<Vec<_>>();
+        let pts: Vec<_> = (0..6).map(|i| [q(i, 1), q(i * i, 1), q(0, 1)]).collect();
+        let s = NurbsSurface::new(
+            [1, 1],
+            k(&[0, 0, 1, 1, 1]),
+            k(&[0, 0, 1, 1]),
+            [3, 2],
+            pts,
+            vec![q(1, 1); 6],
+        )
+        .unwrap();
+        let p = s.eval(&q(1, 1), &q(0, 1));
+        // The end of the curve in u is the second control row (the third is never reached).
+        assert_eq!(p, [q(2, 1), q(4, 1), q(0, 1)]);
     }
 
     #[test]
