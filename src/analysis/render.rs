@@ -1,6 +1,6 @@
 //! SVG drawings of curves on a model, projected on the view plane.
 
-use super::silhouette::{eval_f64, Silhouette, View};
+use super::silhouette::{DrawPatch, Silhouette, View};
 use crate::model::Model;
 use std::fmt::Write;
 
@@ -84,7 +84,12 @@ impl Projection {
 pub fn silhouette_svg(model: &Model, view: &View, s: &Silhouette, title: &str) -> String {
     let proj = Projection::new(view, model);
     let mut outlines: Vec<Vec<[f64; 2]>> = Vec::new();
-    for p in &model.patches {
+    let draw: Vec<DrawPatch> = model
+        .patches
+        .iter()
+        .map(|p| DrawPatch::new(&p.surface))
+        .collect();
+    for d in &draw {
         for side in 0..4 {
             let pts: Vec<[f64; 2]> = (0..=16)
                 .map(|k| {
@@ -95,7 +100,7 @@ pub fn silhouette_svg(model: &Model, view: &View, s: &Silhouette, title: &str) -
                         2 => (1.0 - t, 1.0),
                         _ => (0.0, 1.0 - t),
                     };
-                    proj.project(eval_f64(&p.surface, u, v))
+                    proj.project(d.eval(u, v))
                 })
                 .collect();
             outlines.push(pts);
@@ -116,11 +121,7 @@ pub fn silhouette_svg(model: &Model, view: &View, s: &Silhouette, title: &str) -
         .iter()
         .map(|(p, cell, _)| {
             let [lo, hi] = cell.to_f64();
-            proj.project(eval_f64(
-                &model.patches[*p].surface,
-                0.5 * (lo[0] + hi[0]),
-                0.5 * (lo[1] + hi[1]),
-            ))
+            proj.project(draw[*p].eval(0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])))
         })
         .collect();
     let all = outlines

@@ -618,6 +618,7 @@ fn chain_model(
     joins: &mut Joins,
     open_boundary: &[(usize, Edge)],
 ) -> Vec<SilhouetteCurve> {
+    let draw: Vec<DrawPatch> = patches.iter().map(|p| DrawPatch::new(p)).collect();
     // Arcs of all patches, with their ends mapped to joined nodes.
     let mut arcs: Vec<(Node, Node, usize)> = Vec::new();
     let mut arc_ref: Vec<(usize, usize)> = Vec::new();
@@ -703,7 +704,7 @@ fn chain_model(
         }
         let points = points_uv
             .iter()
-            .map(|&(p, u, v)| eval_f64(patches[p], u, v))
+            .map(|&(p, u, v)| draw[p].eval(u, v))
             .collect();
         curves.push(SilhouetteCurve {
             patches: visited,
@@ -716,15 +717,31 @@ fn chain_model(
     curves
 }
 
-/// The point S(u, v) in f64 (for drawing; not a certified quantity).
+/// A patch in f64 for drawing: its homogeneous polynomials converted once.
+pub struct DrawPatch {
+    h: [Bernstein<f64>; 4],
+}
+
+impl DrawPatch {
+    /// Converts a patch (once).
+    pub fn new(patch: &RationalPatch) -> DrawPatch {
+        DrawPatch {
+            h: patch.homogeneous().map(|p| p.convert(Precision::F64)),
+        }
+    }
+
+    /// The point S(u, v) in f64 (for drawing; not a certified quantity).
+    pub fn eval(&self, u: f64, v: f64) -> [f64; 3] {
+        let x = [u, v];
+        let c: Vec<f64> = self.h.iter().map(|p| p.eval(&x)).collect();
+        [c[0] / c[3], c[1] / c[3], c[2] / c[3]]
+    }
+}
+
+/// The point S(u, v) in f64 (for drawing; not a certified quantity). For many points of one
+/// patch, build a [`DrawPatch`] once instead.
 pub fn eval_f64(patch: &RationalPatch, u: f64, v: f64) -> [f64; 3] {
-    let h = patch.homogeneous();
-    let x = [u, v];
-    let c: Vec<f64> = h
-        .iter()
-        .map(|p| p.convert::<f64>(Precision::F64).eval(&x))
-        .collect();
-    [c[0] / c[3], c[1] / c[3], c[2] / c[3]]
+    DrawPatch::new(patch).eval(u, v)
 }
 
 /// Parses "x,y,z" into an exact view vector.

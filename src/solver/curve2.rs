@@ -172,13 +172,16 @@ impl Question for BoxSigns<'_> {
     }
 }
 
+/// The depth from which undecided box signs are escalated beyond f64.
+const ESCALATION_DEPTH: u32 = 6;
+
 /// The strict sign of `p` on the box if its coefficients prove one, else `Unknown`.
 /// `fast` are the f64-interval coefficients carried down the subdivision.
 fn strict_sign(
     fast: &Bernstein<Interval>,
     exact: &Bernstein<Rational>,
     cell: DyadicBox,
-    ladder: &Ladder,
+    ladder: Option<&Ladder>,
     stats: &mut Escalations,
 ) -> Sign {
     let mut pos = false;
@@ -203,11 +206,15 @@ fn strict_sign(
         stats.record(Some(super::precision::Level::F64));
         return if pos { Sign::Positive } else { Sign::Negative };
     }
-    // Only one strict sign seen and some undecided coefficients: recompute from exact input.
-    ladder
-        .escalate(&BoxSigns { p: exact, cell }, stats)
-        .0
-        .unwrap_or(Sign::Unknown)
+    // Only one strict sign seen and some undecided coefficients: recompute from exact input,
+    // if the caller wants escalation here (it may prefer to subdivide first).
+    match ladder {
+        Some(l) => l
+            .escalate(&BoxSigns { p: exact, cell }, stats)
+            .0
+            .unwrap_or(Sign::Unknown),
+        None => Sign::Unknown,
+    }
 }
 
 /// The polynomial g restricted to the grid line where variable `fixed` is `c`, as a
@@ -376,12 +383,16 @@ pub fn solve_curve(g: &Bernstein<Rational>, opts: &CurveOptions) -> CurveTopolog
         vec![(DyadicBox::UNIT, 0, g.convert(Precision::F64))];
     while let Some((cell, depth, coeffs)) = stack.pop() {
         out.boxes += 1;
-        if strict_sign(&coeffs, g, cell, &opts.ladder, &mut stats).is_known() {
+        // Undecided f64 signs usually come from exact zeros or near-zeros of coefficients on
+        // large boxes, which subdivision resolves more cheaply than higher precision:
+        // escalate only on small boxes, and at the depth budget.
+        let ladder = (depth >= ESCALATION_DEPTH || depth >= opts.max_depth).then_some(&opts.ladder);
+        if strict_sign(&coeffs, g, cell, ladder, &mut stats).is_known() {
             leaves.push((cell, Leaf::Excluded));
             continue;
         }
         let mono = [(0, &gu), (1, &gv)].into_iter().find(|(axis, exact)| {
-            strict_sign(&coeffs.deriv(*axis), exact, cell, &opts.ladder, &mut stats).is_known()
+            strict_sign(&coeffs.deriv(*axis), exact, cell, ladder, &mut stats).is_known()
         });
         if let Some((m, _)) = mono {
             leaves.push((cell, Leaf::Graph { m }));
