@@ -1,8 +1,9 @@
 //! The `limn` command line: a thin layer over the library. Every command that computes
 //! something can print JSON (`--format json`) whose field names are documented in README.
 
+use crate::analysis::baseline::{baseline_silhouette, BaselineMethod};
 use crate::analysis::render::silhouette_svg;
-use crate::analysis::silhouette::{parse_vector, silhouette, SilhouetteReport, View};
+use crate::analysis::silhouette::{parse_vector, silhouette, Silhouette, SilhouetteReport, View};
 use crate::io::{read_model, read_model_bytes};
 use crate::model::{default_weld, Format, ModelInfo, WeldTolerance};
 use crate::solver::CurveOptions;
@@ -74,6 +75,10 @@ enum Command {
         /// The deepest subdivision (the box side is 2^-depth), 1..=40.
         #[arg(long, default_value_t = 24)]
         max_depth: u32,
+        /// "certified" (limn), or an uncertified float baseline of paper 002 for comparison:
+        /// "mesh" (control-mesh normals) or "srf-node" (signs at the control points' parameters).
+        #[arg(long, value_enum, default_value_t = Method::Certified)]
+        method: Method,
     },
     /// Runs the main job on the embedded Newell teapot (no files needed).
     Demo {
@@ -81,6 +86,13 @@ enum Command {
         #[arg(long, value_enum, default_value_t = OutputFormat::Text)]
         format: OutputFormat,
     },
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum Method {
+    Certified,
+    Mesh,
+    SrfNode,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -197,6 +209,7 @@ where
             threads,
             weld,
             max_depth,
+            method,
         } => {
             let view = match (dir, eye) {
                 (Some(d), _) => View::Direction(
@@ -246,9 +259,34 @@ where
                     code: 1,
                 })?;
             let start = std::time::Instant::now();
-            let s = pool.install(|| silhouette(&m, &view, &opts, weld));
-            let ms = start.elapsed().as_secs_f64() * 1e3;
-            let report = SilhouetteReport::new(&name, &view, &s, ms, pool.current_num_threads());
+            let (s, report) = match method {
+                Method::Certified => {
+                    let s = pool.install(|| silhouette(&m, &view, &opts, weld));
+                    let ms = start.elapsed().as_secs_f64() * 1e3;
+                    let r = SilhouetteReport::new(&name, &view, &s, ms, pool.current_num_threads());
+                    (s, r)
+                }
+                Method::Mesh | Method::SrfNode => {
+                    let bm = if method == Method::Mesh {
+                        BaselineMethod::Mesh
+                    } else {
+                        BaselineMethod::SrfNode
+                    };
+                    let curves = baseline_silhouette(&m, &view, bm);
+                    let ms = start.elapsed().as_secs_f64() * 1e3;
+                    let r = SilhouetteReport::baseline(&name, &view, bm, curves.clone(), ms);
+                    let s = Silhouette {
+                        curves,
+                        patches: Vec::new(),
+                        degenerate: Vec::new(),
+                        unresolved: Vec::new(),
+                        unjoined_edges: Vec::new(),
+                        boxes: 0,
+                        escalations: Default::default(),
+                    };
+                    (s, r)
+                }
+            };
             let text = match format {
                 CurveFormat::Json => {
                     serde_json::to_string_pretty(&report).map_err(|e| CliError {
@@ -300,6 +338,12 @@ fn silhouette_text(r: &SilhouetteReport) -> String {
     let mut t = String::new();
     let closed = r.curves.iter().filter(|c| c.closed).count();
     t += &format!("model: {}\n", r.model);
+    if r.method != "certified" {
+        t += &format!(
+            "method: {} (uncertified float baseline of paper 002: nothing is proven)\n",
+            r.method
+        );
+    }
     t += &format!("view: {}\n", r.view);
     t += &format!(
         "curves: {} ({} closed); topology {}\n",
@@ -311,7 +355,9 @@ fn silhouette_text(r: &SilhouetteReport) -> String {
             "NOT fully certified (see unresolved / unjoined)"
         }
     );
-    t += "accuracy: crossings certified within 1e-9 in (u, v); chords between points not bounded yet\n";
+    if r.method == "certified" {
+        t += "accuracy: crossings certified within 1e-9 in (u, v); chords between points not bounded yet\n";
+    }
     for (i, c) in r.curves.iter().enumerate() {
         t += &format!(
             "  curve {i}: {} points, patches {:?}, {}{}\n",

@@ -229,3 +229,29 @@ fn perspective_text_summary() {
     );
     assert!(out.contains("8 x collapsed side"), "{out}");
 }
+
+#[test]
+fn float_baselines_are_marked_uncertified() {
+    for method in ["mesh", "srf-node"] {
+        let (code, out, err) = limn(&[
+            "silhouette",
+            "fixtures/bezier/teapot.bpt",
+            "--dir",
+            "1,2,3",
+            "--method",
+            method,
+            "--format",
+            "json",
+        ]);
+        assert_eq!(code, Some(0), "{err}");
+        let v: Value = serde_json::from_str(&out).unwrap();
+        assert_eq!(v["method"], method);
+        assert_eq!(v["certified"], false);
+        assert_eq!(v["topology_certified"], false);
+        assert!(v["curves"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .all(|c| c["certified_topology"] == false));
+    }
+}

@@ -216,3 +216,106 @@ fn deflation_divides_exactly() {
     // A side on which g does not vanish is left alone.
     assert_eq!(deflate_side(&h, Edge::V0), h);
 }
+
+/// The graph patch (u, v, f(u, v)) with f_x = (x − 1/2)² + (y − 1/2)² − 1/100: seen along x,
+/// its silhouette (f_x = 0) is a circle of radius 1/10 about the centre, inside one cell of
+/// the 4 × 3 control grid. The float baselines of paper 002 miss it; limn finds it.
+#[test]
+fn a_small_loop_the_float_baselines_miss() {
+    use limn::analysis::baseline::{baseline_silhouette, BaselineMethod};
+    use rug::Integer;
+    // f = x³/3 − x²/2 + (49/100) x + x y² − x y − 1/24, written in Bernstein degree (3, 2).
+    let terms: [((u32, u32), Rational); 6] = [
+        ((3, 0), q(1, 3)),
+        ((2, 0), q(-1, 2)),
+        ((1, 0), q(49, 100)),
+        ((1, 2), q(1, 1)),
+        ((1, 1), q(-1, 1)),
+        ((0, 0), q(-1, 24)),
+    ];
+    let (m, n) = (3u32, 2u32);
+    let mono = |deg: u32, i: u32, k: u32| -> Rational {
+        if k < i {
+            Rational::new()
+        } else {
+            Rational::from((
+                Integer::from(Integer::binomial_u(k, i)),
+                Integer::from(Integer::binomial_u(deg, i)),
+            ))
+        }
+    };
+    let mut points = Vec::new();
+    for k in 0..=m {
+        for l in 0..=n {
+            let z: Rational = terms
+                .iter()
+                .map(|((i, j), a)| Rational::from(a * mono(m, *i, k)) * mono(n, *j, l))
+                .sum();
+            points.push([q(k as i64, 3), q(l as i64, 2), z]);
+        }
+    }
+    let patch = limn::surface::RationalPatch::polynomial([3, 2], points).unwrap();
+    let model = model(vec![patch]);
+    let view = dir(1, 0, 0);
+    let s = silhouette(
+        &model,
+        &view,
+        &CurveOptions::default(),
+        WeldTolerance::Exact,
+    );
+    assert!(s.unresolved.is_empty());
+    assert_eq!(s.curves.len(), 1);
+    assert!(s.curves[0].closed && s.curves[0].certified_topology);
+    for p in &s.curves[0].points_uv {
+        let r2 = (p.1 - 0.5).powi(2) + (p.2 - 0.5).powi(2);
+        assert!((r2 - 0.01).abs() < 1e-9, "{p:?}");
+    }
+    // Srf-Node sees one sign at every node and misses the loop; the Mesh Method's control
+    // mesh normals are not the surface normals, and it draws spurious open pieces instead.
+    let srf = baseline_silhouette(&model, &view, BaselineMethod::SrfNode);
+    assert!(srf.is_empty(), "Srf-Node found {} curves", srf.len());
+    let mesh = baseline_silhouette(&model, &view, BaselineMethod::Mesh);
+    assert!(
+        !mesh.iter().any(|c| c.closed),
+        "the Mesh Method is not expected to find the loop"
+    );
+}
+
+#[test]
+fn baselines_agree_with_limn_on_an_easy_case() {
+    use limn::analysis::baseline::{baseline_silhouette, BaselineMethod};
+    // The graph of f = x²/2 − x/2 + x (y − 1/2)/4, seen along x: the silhouette is the line
+    // f_x = x − 1/2 + (y − 1/2)/4 = 0, crossing the patch from v = 0 to v = 1.
+    let f = |i: i64, j: i64| -> Rational {
+        // Bernstein coefficients of f in degree (2, 1), computed by hand.
+        match (i, j) {
+            (0, _) => q(0, 1),
+            (1, 0) => q(-1, 4) + q(-1, 16),
+            (1, 1) => q(-1, 4) + q(1, 16),
+            (2, 0) => q(-1, 8),
+            _ => q(1, 8),
+        }
+    };
+    let mut pts = Vec::new();
+    for i in 0..=2 {
+        for j in 0..=1 {
+            pts.push([q(i, 2), q(j, 1), f(i, j)]);
+        }
+    }
+    let patch = limn::surface::RationalPatch::polynomial([2, 1], pts).unwrap();
+    let m = model(vec![patch]);
+    let view = dir(1, 0, 0);
+    let s = silhouette(&m, &view, &CurveOptions::default(), WeldTolerance::Exact);
+    assert_eq!(s.curves.len(), 1);
+    assert!(s.curves[0].certified_topology && !s.curves[0].closed);
+    for method in [BaselineMethod::SrfNode, BaselineMethod::Mesh] {
+        let b = baseline_silhouette(&m, &view, method);
+        assert_eq!(b.len(), 1, "{method:?}");
+        for p in &b[0].points_uv {
+            assert!(
+                (p.1 - 0.5 + (p.2 - 0.5) / 4.0).abs() < 1e-9,
+                "{method:?}: {p:?}"
+            );
+        }
+    }
+}

@@ -1,4 +1,5 @@
 //! Layer 5: analyses, one module per capability, each built on the solver.
 
+pub mod baseline;
 pub mod render;
 pub mod silhouette;

@@ -790,6 +790,8 @@ pub struct UnresolvedSummary {
 pub struct SilhouetteReport {
     /// The model file.
     pub model: String,
+    /// "certified", or an uncertified float baseline: "mesh", "srf-node".
+    pub method: String,
     /// `{"dir": [x, y, z]}` or `{"eye": [x, y, z]}`, as f64.
     pub view: serde_json::Value,
     /// Whether the whole answer is certified (topology and accuracy). Accuracy of the chords
@@ -823,6 +825,34 @@ pub struct SilhouetteStats {
 }
 
 impl SilhouetteReport {
+    /// The report of an uncertified float baseline (paper 002): curves per patch, nothing
+    /// proven (`certified` and `topology_certified` are false).
+    pub fn baseline(
+        model: &str,
+        view: &View,
+        method: super::baseline::BaselineMethod,
+        curves: Vec<SilhouetteCurve>,
+        time_ms: f64,
+    ) -> SilhouetteReport {
+        let empty = Silhouette {
+            curves,
+            patches: Vec::new(),
+            degenerate: Vec::new(),
+            unresolved: Vec::new(),
+            unjoined_edges: Vec::new(),
+            boxes: 0,
+            escalations: Escalations::default(),
+        };
+        let mut r = SilhouetteReport::new(model, view, &empty, time_ms, 1);
+        r.topology_certified = false;
+        r.method = match method {
+            super::baseline::BaselineMethod::Mesh => "mesh",
+            super::baseline::BaselineMethod::SrfNode => "srf-node",
+        }
+        .to_string();
+        r
+    }
+
     /// The report of a silhouette run.
     pub fn new(
         model: &str,
@@ -856,6 +886,7 @@ impl SilhouetteReport {
             && s.curves.iter().all(|c| c.certified_topology);
         SilhouetteReport {
             model: model.to_string(),
+            method: "certified".to_string(),
             view,
             certified: false,
             topology_certified,
