@@ -18,6 +18,9 @@ use crate::number::Precision;
 use crate::surface::RationalPatch;
 use std::collections::BTreeMap;
 
+/// A grid node (i, j).
+type Node = (usize, usize);
+
 /// Which float method.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "kebab-case")]
@@ -108,7 +111,7 @@ pub fn baseline_silhouette(
         let (m, n) = (m.max(1), n.max(1));
         let uv = |i: usize, j: usize| [i as f64 / m as f64, j as f64 / n as f64];
         // A point on each grid edge whose end values differ in sign, keyed by the edge.
-        let mut edge_point: BTreeMap<((usize, usize), (usize, usize)), [f64; 2]> = BTreeMap::new();
+        let mut edge_point: BTreeMap<(Node, Node), [f64; 2]> = BTreeMap::new();
         let mut point_on = |a: (usize, usize), b: (usize, usize)| -> Option<[f64; 2]> {
             let (va, vb) = (vals[a.0][a.1], vals[b.0][b.1]);
             if (va > 0.0) == (vb > 0.0) {
