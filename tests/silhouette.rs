@@ -249,7 +249,7 @@ fn a_small_loop_the_float_baselines_miss() {
         for l in 0..=n {
             let z: Rational = terms
                 .iter()
-                .map(|((i, j), a)| Rational::from(a * mono(m, *i, k)) * mono(n, *j, l))
+                .map(|((i, j), a)| (a * mono(m, *i, k)) * mono(n, *j, l))
                 .sum();
             points.push([q(k as i64, 3), q(l as i64, 2), z]);
         }
