@@ -12,6 +12,9 @@ use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+/// The view direction of `limn demo`.
+pub const DEMO_DIRECTION: &str = "1,2,3";
+
 /// The Newell teapot (32 bicubic patches), embedded so that `limn demo` needs no files.
 pub const EMBEDDED_TEAPOT: &str = include_str!("../fixtures/bezier/teapot.bpt");
 
@@ -82,9 +85,9 @@ enum Command {
     },
     /// Runs the main job on the embedded Newell teapot (no files needed).
     Demo {
-        /// Output format.
-        #[arg(long, value_enum, default_value_t = OutputFormat::Text)]
-        format: OutputFormat,
+        /// Output format: a text summary, the silhouette report (JSON), or its drawing (SVG).
+        #[arg(long, value_enum, default_value_t = CurveFormat::Text)]
+        format: CurveFormat,
     },
 }
 
@@ -318,18 +321,46 @@ where
             }
         }
         Command::Demo { format } => {
+            let name = "embedded teapot (Newell, 32 bicubic patches)";
             let m = read_model_bytes(
                 "embedded teapot",
                 EMBEDDED_TEAPOT.as_bytes(),
                 Some(Format::Bpt),
             )
             .map_err(|e| CliError::input(e.to_string()))?;
-            let info = ModelInfo::of(
-                "embedded teapot (Newell, 32 bicubic patches)",
-                &m,
-                WeldTolerance::Exact,
-            );
-            w(print_info(&info, format, out))
+            let view = View::Direction(parse_vector(DEMO_DIRECTION).map_err(CliError::input)?);
+            let start = std::time::Instant::now();
+            let s = silhouette(&m, &view, &CurveOptions::default(), WeldTolerance::Exact);
+            let ms = start.elapsed().as_secs_f64() * 1e3;
+            let report = SilhouetteReport::new(name, &view, &s, ms, rayon::current_num_threads());
+            let text = match format {
+                CurveFormat::Json => {
+                    serde_json::to_string_pretty(&report).map_err(|e| CliError {
+                        message: e.to_string(),
+                        code: 1,
+                    })? + "\n"
+                }
+                CurveFormat::Svg => silhouette_svg(
+                    &m,
+                    &view,
+                    &s,
+                    &format!("{name}: silhouette from ({DEMO_DIRECTION})"),
+                ),
+                CurveFormat::Text => {
+                    let mut info = Vec::new();
+                    w(print_info(
+                        &ModelInfo::of(name, &m, WeldTolerance::Exact),
+                        OutputFormat::Text,
+                        &mut info,
+                    ))?;
+                    String::from_utf8_lossy(&info).into_owned()
+                        + "\nsilhouette from ("
+                        + DEMO_DIRECTION
+                        + "):\n"
+                        + &silhouette_text(&report)
+                }
+            };
+            w(out.write_all(text.as_bytes()))
         }
     }
 }

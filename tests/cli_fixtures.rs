@@ -138,18 +138,27 @@ fn meshes_euler_characteristic_and_genus() {
 
 #[test]
 fn demo_runs_on_the_embedded_teapot() {
+    // The main job: the teapot's silhouette from the default direction, topology certified.
     let out = Command::new(env!("CARGO_BIN_EXE_limn"))
         .args(["demo", "--format", "json"])
         .output()
         .unwrap();
     assert!(out.status.success());
     let v: Value = serde_json::from_slice(&out.stdout).unwrap();
-    assert_eq!(v["patches"], 32);
+    assert_eq!(v["topology_certified"], true);
+    assert_eq!(v["curves"].as_array().unwrap().len(), 10);
     let text = Command::new(env!("CARGO_BIN_EXE_limn"))
         .arg("demo")
         .output()
         .unwrap();
-    assert!(String::from_utf8_lossy(&text.stdout).contains("Bézier patches: 32"));
+    let text = String::from_utf8_lossy(&text.stdout);
+    assert!(text.contains("Bézier patches: 32"), "{text}");
+    assert!(text.contains("topology certified"), "{text}");
+    let svg = Command::new(env!("CARGO_BIN_EXE_limn"))
+        .args(["demo", "--format", "svg"])
+        .output()
+        .unwrap();
+    assert!(String::from_utf8_lossy(&svg.stdout).starts_with("<svg"));
 }
 
 #[test]
