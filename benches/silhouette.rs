@@ -26,7 +26,9 @@ fn benches(c: &mut Criterion) {
     let opts = CurveOptions::default();
     let mut g = c.benchmark_group("silhouette");
     g.bench_function("teapot-1,2,3", |b| {
-        b.iter(|| pool.install(|| silhouette(&teapot, &dir(1, 2, 3), &opts, WeldTolerance::Exact)))
+        b.iter(|| {
+            pool.install(|| silhouette(&teapot, &dir(1, 2, 3), &opts, WeldTolerance::Exact, None))
+        })
     });
     let patch = &teapot.patches[0].surface;
     g.bench_function("teapot-patch0-function", |b| {
@@ -38,14 +40,18 @@ fn benches(c: &mut Criterion) {
     });
     let sphere = Model::from_patches(Format::Json, shapes::sphere(&Rational::from(1)));
     g.bench_function("sphere-1,2,3", |b| {
-        b.iter(|| pool.install(|| silhouette(&sphere, &dir(1, 2, 3), &opts, WeldTolerance::Exact)))
+        b.iter(|| {
+            pool.install(|| silhouette(&sphere, &dir(1, 2, 3), &opts, WeldTolerance::Exact, None))
+        })
     });
     let torus = Model::from_patches(
         Format::Json,
         shapes::torus(&Rational::from(3), &Rational::from(1)),
     );
     g.bench_function("torus-1,2,3", |b| {
-        b.iter(|| pool.install(|| silhouette(&torus, &dir(1, 2, 3), &opts, WeldTolerance::Exact)))
+        b.iter(|| {
+            pool.install(|| silhouette(&torus, &dir(1, 2, 3), &opts, WeldTolerance::Exact, None))
+        })
     });
     g.finish();
 }

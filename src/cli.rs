@@ -12,6 +12,9 @@ use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+/// The tolerance of `limn demo`, relative to the bounding-box diagonal.
+pub const DEMO_TOLERANCE: f64 = 1e-3;
+
 /// The view direction of `limn demo`.
 pub const DEMO_DIRECTION: &str = "1,2,3";
 
@@ -78,6 +81,14 @@ enum Command {
         /// The deepest subdivision (the box side is 2^-depth), 1..=40.
         #[arg(long, default_value_t = 24)]
         max_depth: u32,
+        /// Certify the drawing: every segment within this distance of the true silhouette,
+        /// relative to the bounding-box diagonal (absolute with --abs-tol). Without it the
+        /// topology is certified but the chords are not bounded (and `certified` is false).
+        #[arg(long, allow_hyphen_values = true)]
+        tol: Option<f64>,
+        /// Read --tol as an absolute distance in model units.
+        #[arg(long)]
+        abs_tol: bool,
         /// "certified" (limn), or an uncertified float baseline of paper 002 for comparison:
         /// "mesh" (control-mesh normals) or "srf-node" (signs at the control points' parameters).
         #[arg(long, value_enum, default_value_t = Method::Certified)]
@@ -213,7 +224,16 @@ where
             weld,
             max_depth,
             method,
+            tol,
+            abs_tol,
         } => {
+            if let Some(t) = tol {
+                if !(t.is_finite() && t > 0.0) {
+                    return Err(CliError::input(format!(
+                        "--tol: expected a positive number, found {t}"
+                    )));
+                }
+            }
             let view = match (dir, eye) {
                 (Some(d), _) => View::Direction(
                     parse_vector(&d).map_err(|e| CliError::input(format!("--dir: {e}")))?,
@@ -264,7 +284,8 @@ where
             let start = std::time::Instant::now();
             let (s, report) = match method {
                 Method::Certified => {
-                    let s = pool.install(|| silhouette(&m, &view, &opts, weld));
+                    let tol_abs = tol.map(|t| if abs_tol { t } else { t * m.diagonal() });
+                    let s = pool.install(|| silhouette(&m, &view, &opts, weld, tol_abs));
                     let ms = start.elapsed().as_secs_f64() * 1e3;
                     let r = SilhouetteReport::new(&name, &view, &s, ms, pool.current_num_threads());
                     (s, r)
@@ -279,6 +300,7 @@ where
                     let ms = start.elapsed().as_secs_f64() * 1e3;
                     let r = SilhouetteReport::baseline(&name, &view, bm, curves.clone(), ms);
                     let s = Silhouette {
+                        tolerance: None,
                         curves,
                         patches: Vec::new(),
                         degenerate: Vec::new(),
@@ -330,7 +352,14 @@ where
             .map_err(|e| CliError::input(e.to_string()))?;
             let view = View::Direction(parse_vector(DEMO_DIRECTION).map_err(CliError::input)?);
             let start = std::time::Instant::now();
-            let s = silhouette(&m, &view, &CurveOptions::default(), WeldTolerance::Exact);
+            let tol = DEMO_TOLERANCE * m.diagonal();
+            let s = silhouette(
+                &m,
+                &view,
+                &CurveOptions::default(),
+                WeldTolerance::Exact,
+                Some(tol),
+            );
             let ms = start.elapsed().as_secs_f64() * 1e3;
             let report = SilhouetteReport::new(name, &view, &s, ms, rayon::current_num_threads());
             let text = match format {
@@ -387,7 +416,16 @@ fn silhouette_text(r: &SilhouetteReport) -> String {
         }
     );
     if r.method == "certified" {
-        t += "accuracy: crossings certified within 1e-9 in (u, v); chords between points not bounded yet\n";
+        let worst = r
+            .curves
+            .iter()
+            .filter_map(|c| c.error_bound)
+            .fold(0.0f64, f64::max);
+        match r.tolerance {
+            Some(tol) if r.certified => t += &format!("accuracy: certified, every segment within {worst:.3e} of the true curve (tolerance {tol:.3e})\n"),
+            Some(tol) => t += &format!("accuracy: tolerance {tol:.3e}; not certified for every curve (see the curves)\n"),
+            None => t += "accuracy: not bounded (no tolerance asked)\n",
+        }
     }
     for (i, c) in r.curves.iter().enumerate() {
         t += &format!(

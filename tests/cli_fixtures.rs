@@ -146,6 +146,10 @@ fn demo_runs_on_the_embedded_teapot() {
     assert!(out.status.success());
     let v: Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["topology_certified"], true);
+    assert_eq!(
+        v["certified"], true,
+        "the demo traces to 1e-3 of the diagonal"
+    );
     assert_eq!(v["curves"].as_array().unwrap().len(), 10);
     let text = Command::new(env!("CARGO_BIN_EXE_limn"))
         .arg("demo")

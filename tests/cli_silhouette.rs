@@ -255,3 +255,36 @@ fn float_baselines_are_marked_uncertified() {
             .all(|c| c["certified_topology"] == false));
     }
 }
+
+#[test]
+fn tolerance_certifies_the_drawing() {
+    let model = sphere_json();
+    let (code, out, err) = limn(&[
+        "silhouette",
+        model.to_str().unwrap(),
+        "--dir",
+        "1,-2,3",
+        "--tol",
+        "1e-4",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(code, Some(0), "{err}");
+    let v: Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["certified"], true);
+    let tol = v["tolerance"].as_f64().unwrap();
+    // Relative to the bounding-box diagonal of the control points (a cube of side 4 about the origin).
+    assert!((tol - 1e-4 * (48f64).sqrt()).abs() < 1e-12, "{tol}");
+    let bound = v["curves"][0]["error_bound"].as_f64().unwrap();
+    assert!(bound <= tol);
+    let (code, _, err) = limn(&[
+        "silhouette",
+        model.to_str().unwrap(),
+        "--dir",
+        "1,2,3",
+        "--tol",
+        "-1",
+    ]);
+    assert_eq!(code, Some(2));
+    assert!(err.contains("--tol"), "{err}");
+}

@@ -59,6 +59,7 @@ fn sphere_has_one_loop_from_generic_directions() {
             &dir(x, y, z),
             &CurveOptions::default(),
             WeldTolerance::Exact,
+            None,
         );
         assert!(s.unresolved.is_empty(), "{:?}", s.unresolved);
         assert!(s.unjoined_edges.is_empty(), "{:?}", s.unjoined_edges);
@@ -98,6 +99,7 @@ fn torus_has_two_loops_from_generic_directions() {
             &dir(x, y, z),
             &CurveOptions::default(),
             WeldTolerance::Exact,
+            None,
         );
         assert!(s.unresolved.is_empty(), "{:?}", s.unresolved);
         let closed = s
@@ -123,6 +125,7 @@ fn perspective_sphere_is_one_loop_and_edge_on_plane_is_degenerate() {
         &View::Eye([q(1, 3), q(2, 1), q(5, 1)]),
         &CurveOptions::default(),
         WeldTolerance::Exact,
+        None,
     );
     assert!(s.unresolved.is_empty());
     assert_eq!(s.curves.len(), 1);
@@ -133,6 +136,7 @@ fn perspective_sphere_is_one_loop_and_edge_on_plane_is_degenerate() {
         &dir(1, 2, 0),
         &CurveOptions::default(),
         WeldTolerance::Exact,
+        None,
     );
     assert_eq!(s.degenerate.len(), 1);
     assert_eq!(s.degenerate[0].kind, "edge-on");
@@ -153,6 +157,7 @@ fn thread_count_does_not_change_the_answer() {
                 &dir(1, 2, 3),
                 &CurveOptions::default(),
                 WeldTolerance::Exact,
+                None,
             )
         })
     };
@@ -172,6 +177,7 @@ fn axis_views_along_patch_edges_and_through_poles_are_certified() {
             &dir(x, y, z),
             &CurveOptions::default(),
             WeldTolerance::Exact,
+            None,
         );
         assert!(
             s.unresolved.is_empty(),
@@ -262,6 +268,7 @@ fn a_small_loop_the_float_baselines_miss() {
         &view,
         &CurveOptions::default(),
         WeldTolerance::Exact,
+        None,
     );
     assert!(s.unresolved.is_empty());
     assert_eq!(s.curves.len(), 1);
@@ -305,7 +312,13 @@ fn baselines_agree_with_limn_on_an_easy_case() {
     let patch = limn::surface::RationalPatch::polynomial([2, 1], pts).unwrap();
     let m = model(vec![patch]);
     let view = dir(1, 0, 0);
-    let s = silhouette(&m, &view, &CurveOptions::default(), WeldTolerance::Exact);
+    let s = silhouette(
+        &m,
+        &view,
+        &CurveOptions::default(),
+        WeldTolerance::Exact,
+        None,
+    );
     assert_eq!(s.curves.len(), 1);
     assert!(s.curves[0].certified_topology && !s.curves[0].closed);
     for method in [BaselineMethod::SrfNode, BaselineMethod::Mesh] {
@@ -316,6 +329,45 @@ fn baselines_agree_with_limn_on_an_easy_case() {
                 (p.1 - 0.5 + (p.2 - 0.5) / 4.0).abs() < 1e-9,
                 "{method:?}: {p:?}"
             );
+        }
+    }
+}
+
+#[test]
+fn traced_sphere_silhouette_is_within_the_tolerance() {
+    // Radius 2, direction (1, 2, 2)/3: the true silhouette is the great circle in the plane
+    // x + 2y + 2z = 0. Every point of every drawn segment (checked at vertices and midpoints)
+    // must be within the reported bound, which must be at most the tolerance.
+    let m = model(shapes::sphere(&q(2, 1)));
+    let n = [1.0 / 3.0, 2.0 / 3.0, 2.0 / 3.0];
+    for tol in [1e-3, 1e-6] {
+        let s = silhouette(
+            &m,
+            &dir(1, 2, 2),
+            &CurveOptions::default(),
+            WeldTolerance::Exact,
+            Some(tol),
+        );
+        assert_eq!(s.curves.len(), 1);
+        let c = &s.curves[0];
+        assert!(c.certified, "tol {tol}");
+        let bound = c.error_bound.unwrap();
+        assert!(bound <= tol, "{bound} > {tol}");
+        let dist = |p: [f64; 3]| {
+            let h = p[0] * n[0] + p[1] * n[1] + p[2] * n[2];
+            let q = [p[0] - h * n[0], p[1] - h * n[1], p[2] - h * n[2]];
+            let r = (q[0] * q[0] + q[1] * q[1] + q[2] * q[2]).sqrt();
+            (h * h + (r - 2.0) * (r - 2.0)).sqrt()
+        };
+        for w in c.points.windows(2) {
+            let mid = [
+                0.5 * (w[0][0] + w[1][0]),
+                0.5 * (w[0][1] + w[1][1]),
+                0.5 * (w[0][2] + w[1][2]),
+            ];
+            for p in [w[0], mid] {
+                assert!(dist(p) <= bound + 1e-12, "tol {tol}: {} > {bound}", dist(p));
+            }
         }
     }
 }

@@ -208,6 +208,8 @@ pub fn baseline_silhouette(
                 patches: vec![pi],
                 closed,
                 certified_topology: false,
+                certified: false,
+                error_bound: None,
                 points: line.iter().map(|p| draw.eval(p[0], p[1])).collect(),
                 points_uv: line.iter().map(|p| (pi, p[0], p[1])).collect(),
             });

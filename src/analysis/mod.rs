@@ -1,5 +1,6 @@
 //! Layer 5: analyses, one module per capability, each built on the solver.
 
+pub mod accuracy;
 pub mod baseline;
 pub mod render;
 pub mod silhouette;

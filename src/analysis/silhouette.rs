@@ -7,6 +7,7 @@
 //! per patch by [`solve_curve`] and joined across shared edges where the join is proven
 //! (`proofs/silhouette-join.md`).
 
+use super::accuracy::PatchAccuracy;
 use crate::bernstein::Bernstein;
 use crate::model::{Model, PatchAdjacency, SideUse, WeldTolerance};
 use crate::number::{Number, Precision, Rational};
@@ -86,6 +87,12 @@ pub struct SilhouetteCurve {
     /// Its topology is proven: every join is proven and an open curve ends on the open
     /// boundary of the model.
     pub certified_topology: bool,
+    /// Topology proven and every drawn segment within the tolerance of the true curve
+    /// (`proofs/chord-accuracy.md`); false without a tolerance.
+    pub certified: bool,
+    /// The largest proven distance between a drawn segment and the true curve, in model units
+    /// (absent without a tolerance, or where no bound was reached).
+    pub error_bound: Option<f64>,
     /// Points along the curve in order, (patch, u, v): the crossings at the centres of their
     /// certified locations and, between them, drawing points on the curve computed in f64 on
     /// lines across each arc's box (not certified).
@@ -110,6 +117,8 @@ pub struct Silhouette {
     pub unjoined_edges: Vec<(usize, Edge, usize, Edge)>,
     /// Boxes examined, summed over patches.
     pub boxes: usize,
+    /// The tolerance the curves were traced to (absolute, model units), if any.
+    pub tolerance: Option<f64>,
     /// Sign questions by the level that settled them.
     pub escalations: Escalations,
 }
@@ -217,6 +226,7 @@ pub fn silhouette(
     view: &View,
     opts: &CurveOptions,
     weld: WeldTolerance,
+    tol: Option<f64>,
 ) -> Silhouette {
     let patches: Vec<&RationalPatch> = model.patches.iter().map(|p| &p.surface).collect();
     let adj = PatchAdjacency::of_patches(&patches, weld);
@@ -323,7 +333,21 @@ pub fn silhouette(
             joins.union(w[0], w[1]);
         }
     }
-    let curves = chain_model(&tops, &gs_fast, &patches, &mut joins, &open_boundary);
+    let accuracy: Option<Vec<Option<PatchAccuracy>>> = tol.map(|_| {
+        solve_gs
+            .par_iter()
+            .enumerate()
+            .map(|(i, g)| (!tops[i].arcs.is_empty()).then(|| PatchAccuracy::new(patches[i], g)))
+            .collect()
+    });
+    let curves = chain_model(
+        &tops,
+        &gs_fast,
+        &patches,
+        &mut joins,
+        &open_boundary,
+        accuracy.as_deref().zip(tol),
+    );
     Silhouette {
         curves,
         patches: tops,
@@ -331,6 +355,7 @@ pub fn silhouette(
         unresolved,
         unjoined_edges: unjoined,
         boxes,
+        tolerance: tol,
         escalations,
     }
 }
@@ -617,6 +642,7 @@ fn chain_model(
     patches: &[&RationalPatch],
     joins: &mut Joins,
     open_boundary: &[(usize, Edge)],
+    accuracy: Option<(&[Option<PatchAccuracy>], f64)>,
 ) -> Vec<SilhouetteCurve> {
     let draw: Vec<DrawPatch> = patches.iter().map(|p| DrawPatch::new(p)).collect();
     // Arcs of all patches, with their ends mapped to joined nodes.
@@ -688,13 +714,31 @@ fn chain_model(
         };
         let mut visited = Vec::new();
         let mut points_uv = Vec::new();
+        let mut worst: Option<f64> = accuracy.map(|_| 0.0);
         for &(arc, backwards) in &walked {
             let (p, k) = arc_ref[arc];
             if !visited.contains(&p) {
                 visited.push(p);
             }
             let a = &tops[p].arcs[k];
-            let mut pts = densify(&gs_fast[p], &tops[p], a, DENSIFY_STEPS);
+            let mut pts = match accuracy {
+                Some((acc, tol)) => match &acc[p] {
+                    Some(pa) => {
+                        let (pts, bound) =
+                            pa.trace(a, tops[p].locations[&a.from], tops[p].locations[&a.to], tol);
+                        match bound {
+                            Some(e) => worst = worst.map(|w: f64| w.max(e)),
+                            None => worst = None,
+                        }
+                        pts
+                    }
+                    None => {
+                        worst = None;
+                        densify(&gs_fast[p], &tops[p], a, DENSIFY_STEPS)
+                    }
+                },
+                None => densify(&gs_fast[p], &tops[p], a, DENSIFY_STEPS),
+            };
             if backwards {
                 pts.reverse();
             }
@@ -710,6 +754,8 @@ fn chain_model(
             patches: visited,
             closed,
             certified_topology: certified,
+            certified: certified && worst.is_some(),
+            error_bound: worst,
             points_uv,
             points,
         });
@@ -794,9 +840,11 @@ pub struct SilhouetteReport {
     pub method: String,
     /// `{"dir": [x, y, z]}` or `{"eye": [x, y, z]}`, as f64.
     pub view: serde_json::Value,
-    /// Whether the whole answer is certified (topology and accuracy). Accuracy of the chords
-    /// is not bounded yet, so this is false.
+    /// Whether the whole answer is certified: topology proven and every drawn segment within
+    /// `tolerance` of the true curve.
     pub certified: bool,
+    /// The world-space tolerance the drawing was certified against (absent: not asked).
+    pub tolerance: Option<f64>,
     /// Whether the topology of every curve is proven (no unresolved region, every join proven).
     pub topology_certified: bool,
     /// The curves.
@@ -835,6 +883,7 @@ impl SilhouetteReport {
         time_ms: f64,
     ) -> SilhouetteReport {
         let empty = Silhouette {
+            tolerance: None,
             curves,
             patches: Vec::new(),
             degenerate: Vec::new(),
@@ -888,7 +937,10 @@ impl SilhouetteReport {
             model: model.to_string(),
             method: "certified".to_string(),
             view,
-            certified: false,
+            certified: topology_certified
+                && s.curves.iter().all(|c| c.certified)
+                && s.tolerance.is_some(),
+            tolerance: s.tolerance,
             topology_certified,
             curves: s.curves.clone(),
             unresolved: per_patch.into_values().collect(),

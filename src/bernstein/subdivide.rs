@@ -2,7 +2,7 @@
 
 use super::eval::casteljau_step;
 use super::Bernstein;
-use crate::number::Number;
+use crate::number::{Number, Rational};
 
 impl<N: Number> Bernstein<N> {
     /// Splits the box at the middle of `axis`: the polynomials on `[0, 1/2]` and `[1/2, 1]`
@@ -116,6 +116,44 @@ impl<N: Number> Bernstein<N> {
         let mut p = self.clone();
         for axis in 0..self.nvars {
             p = p.restrict(axis, &lo[axis], &hi[axis]);
+        }
+        p
+    }
+
+    /// The polynomial restricted to `[a, b]` along `axis`, with exact rational ends: two
+    /// de Casteljau splits, at `a` and then at `(b − a)/(1 − a)` (computed exactly, then
+    /// enclosed), O(d²) per fibre instead of the blossom's O(d³). Falls back to
+    /// [`Bernstein::restrict`] when `a >= b` or `a = 1`.
+    ///
+    /// # Panics
+    /// If `axis >= nvars`.
+    pub fn restrict_rational(&self, axis: usize, a: &Rational, b: &Rational) -> Self {
+        let prec = self.coeffs[0].precision();
+        if a >= b || *a == 1 {
+            return self.restrict(axis, &N::from_rational(a, prec), &N::from_rational(b, prec));
+        }
+        let right = if a.cmp0() == std::cmp::Ordering::Equal {
+            self.clone()
+        } else {
+            self.subdivide(axis, &N::from_rational(a, prec)).1
+        };
+        let t = Rational::from(b - a) / Rational::from(1 - a);
+        if t == 1 {
+            return right;
+        }
+        right.subdivide(axis, &N::from_rational(&t, prec)).0
+    }
+
+    /// The polynomial restricted to the box `[lo_a, hi_a]` (exact rational bounds) in each
+    /// variable, by [`Bernstein::restrict_rational`].
+    ///
+    /// # Panics
+    /// If the slices' lengths are not the number of variables.
+    pub fn restrict_box_rational(&self, lo: &[Rational], hi: &[Rational]) -> Self {
+        assert!(lo.len() == self.nvars && hi.len() == self.nvars);
+        let mut p = self.clone();
+        for axis in 0..self.nvars {
+            p = p.restrict_rational(axis, &lo[axis], &hi[axis]);
         }
         p
     }

@@ -83,6 +83,9 @@ proptest! {
         let pi: Bernstein<Interval> = p.convert(Precision::F64);
         let ri = pi.restrict(axis, &Interval::from_rational(&a, Precision::F64), &Interval::from_rational(&b, Precision::F64));
         prop_assert!(encloses_i(&ri, &r));
+        // The two-split version: exact on exact input, an enclosure on intervals.
+        prop_assert_eq!(p.restrict_rational(axis, &a, &b), r.clone());
+        prop_assert!(encloses_i(&pi.restrict_rational(axis, &a, &b), &r));
     }
 
     #[test]
