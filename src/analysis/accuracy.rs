@@ -255,7 +255,18 @@ impl PatchAccuracy {
             (p0[o], p0[m], end_delta(from)),
             (p1[o], p1[m], end_delta(to)),
         ];
-        let mut worst: f64 = 0.0;
+        // The true arc ends anywhere in its crossing's location box, which may extend beyond
+        // the end vertex's level: that end piece lies in the box grown by Φ₁ in m, within
+        // L·(δ + half-extent in o) of the vertex in space, L bounding |∂S/∂m| and |∂S/∂o|.
+        let Some(l_o) = self.surface_bounds(blo, bhi, o).map(|b| b[0]) else {
+            return (vec![p0, p1], None);
+        };
+        let end_piece =
+            |b: [[f64; 2]; 2]| l_m.max(l_o) * (end_delta(b) + half(b, o)) * (1.0 + 1e-9);
+        let mut worst: f64 = end_piece(from).max(end_piece(to));
+        if worst > tol {
+            return (vec![p0, p1], None);
+        }
         let mut i = 0;
         while i + 1 < verts.len() {
             let (oa, ma, da) = verts[i];
