@@ -299,41 +299,10 @@ where
                     let curves = baseline_silhouette(&m, &view, bm);
                     let ms = start.elapsed().as_secs_f64() * 1e3;
                     let r = SilhouetteReport::baseline(&name, &view, bm, curves.clone(), ms);
-                    let s = Silhouette {
-                        tolerance: None,
-                        curves,
-                        patches: Vec::new(),
-                        degenerate: Vec::new(),
-                        unresolved: Vec::new(),
-                        unjoined_edges: Vec::new(),
-                        boxes: 0,
-                        escalations: Default::default(),
-                    };
-                    (s, r)
+                    (Silhouette::from_curves(curves), r)
                 }
             };
-            let text = match format {
-                CurveFormat::Json => {
-                    serde_json::to_string_pretty(&report).map_err(|e| CliError {
-                        message: e.to_string(),
-                        code: 1,
-                    })? + "\n"
-                }
-                CurveFormat::Svg => {
-                    let title = format!(
-                        "{name}: {} silhouette curves ({}), {} unresolved regions",
-                        report.curves.len(),
-                        if report.topology_certified {
-                            "topology certified"
-                        } else {
-                            "topology NOT fully certified"
-                        },
-                        report.unresolved.len()
-                    );
-                    silhouette_svg(&m, &view, &s, &title)
-                }
-                CurveFormat::Text => silhouette_text(&report),
-            };
+            let text = render_silhouette(format, &report, &m, &view, &s)?;
             match output {
                 Some(path) => std::fs::write(&path, text).map_err(|e| CliError {
                     message: format!("{}: cannot write: {e}", path.display()),
@@ -363,18 +332,6 @@ where
             let ms = start.elapsed().as_secs_f64() * 1e3;
             let report = SilhouetteReport::new(name, &view, &s, ms, rayon::current_num_threads());
             let text = match format {
-                CurveFormat::Json => {
-                    serde_json::to_string_pretty(&report).map_err(|e| CliError {
-                        message: e.to_string(),
-                        code: 1,
-                    })? + "\n"
-                }
-                CurveFormat::Svg => silhouette_svg(
-                    &m,
-                    &view,
-                    &s,
-                    &format!("{name}: silhouette from ({DEMO_DIRECTION})"),
-                ),
                 CurveFormat::Text => {
                     let mut info = Vec::new();
                     w(print_info(
@@ -388,10 +345,46 @@ where
                         + "):\n"
                         + &silhouette_text(&report)
                 }
+                _ => render_silhouette(format, &report, &m, &view, &s)?,
             };
             w(out.write_all(text.as_bytes()))
         }
     }
+}
+
+/// A silhouette result as JSON, SVG or text.
+fn render_silhouette(
+    format: CurveFormat,
+    report: &SilhouetteReport,
+    m: &crate::model::Model,
+    view: &View,
+    s: &Silhouette,
+) -> Result<String, CliError> {
+    Ok(match format {
+        CurveFormat::Json => {
+            serde_json::to_string_pretty(report).map_err(|e| CliError {
+                message: e.to_string(),
+                code: 1,
+            })? + "\n"
+        }
+        CurveFormat::Svg => {
+            let title = format!(
+                "{}: {} silhouette curves ({}), {} unresolved regions",
+                report.model,
+                report.curves.len(),
+                if report.certified {
+                    "certified"
+                } else if report.topology_certified {
+                    "topology certified"
+                } else {
+                    "topology NOT fully certified"
+                },
+                report.unresolved.len()
+            );
+            silhouette_svg(m, view, s, &title)
+        }
+        CurveFormat::Text => silhouette_text(report),
+    })
 }
 
 fn silhouette_text(r: &SilhouetteReport) -> String {

@@ -12,6 +12,7 @@
 //! for. A loop smaller than a grid cell is missed, and a saddle cell is connected by guess.
 
 use super::silhouette::{silhouette_function, DrawPatch, SilhouetteCurve, View};
+use super::vec3::{cross, dot, sub};
 use crate::bernstein::Bernstein;
 use crate::model::Model;
 use crate::number::Precision;
@@ -29,22 +30,6 @@ pub enum BaselineMethod {
     Mesh,
     /// Signs of the silhouette function at the control points' parameter values.
     SrfNode,
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 /// The node values of the grid (m+1) × (n+1) for one patch.

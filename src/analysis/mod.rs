@@ -4,3 +4,4 @@ pub mod accuracy;
 pub mod baseline;
 pub mod render;
 pub mod silhouette;
+pub mod vec3;

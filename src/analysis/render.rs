@@ -1,29 +1,9 @@
 //! SVG drawings of curves on a model, projected on the view plane.
 
 use super::silhouette::{DrawPatch, Silhouette, View};
+use super::vec3::{cross, dot, normalize};
 use crate::model::Model;
 use std::fmt::Write;
-
-fn norm(v: [f64; 3]) -> [f64; 3] {
-    let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-    if l > 0.0 {
-        [v[0] / l, v[1] / l, v[2] / l]
-    } else {
-        v
-    }
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
 
 /// A projection of space onto the view plane: orthographic along a direction, or central from
 /// an eye towards the model's centre.
@@ -41,12 +21,12 @@ impl Projection {
             [0, 1, 2].map(|k| 0.5 * (lo[k].to_f64() + hi[k].to_f64()))
         });
         let (eye, forward) = match view {
-            View::Direction(d) => (None, norm(d.clone().map(|c| c.to_f64()))),
+            View::Direction(d) => (None, normalize(d.clone().map(|c| c.to_f64()))),
             View::Eye(e) => {
                 let e = e.clone().map(|c| c.to_f64());
                 (
                     Some(e),
-                    norm([center[0] - e[0], center[1] - e[1], center[2] - e[2]]),
+                    normalize([center[0] - e[0], center[1] - e[1], center[2] - e[2]]),
                 )
             }
         };
@@ -56,7 +36,7 @@ impl Projection {
         } else {
             [0.0, 1.0, 0.0]
         };
-        let right = norm(cross(forward, helper));
+        let right = normalize(cross(forward, helper));
         let up = cross(right, forward);
         Projection {
             eye,

@@ -123,6 +123,22 @@ pub struct Silhouette {
     pub escalations: Escalations,
 }
 
+impl Silhouette {
+    /// A result made of curves only (no per-patch data, nothing unresolved): for baselines.
+    pub fn from_curves(curves: Vec<SilhouetteCurve>) -> Silhouette {
+        Silhouette {
+            curves,
+            patches: Vec::new(),
+            degenerate: Vec::new(),
+            unresolved: Vec::new(),
+            unjoined_edges: Vec::new(),
+            boxes: 0,
+            tolerance: None,
+            escalations: Escalations::default(),
+        }
+    }
+}
+
 /// The side a crossing lies on (the first one, for a corner) and its parameter along it,
 /// as the dyadic interval containing it.
 fn side_of(id: &CrossingId) -> Vec<(Edge, Dyadic, Dyadic)> {
@@ -882,17 +898,8 @@ impl SilhouetteReport {
         curves: Vec<SilhouetteCurve>,
         time_ms: f64,
     ) -> SilhouetteReport {
-        let empty = Silhouette {
-            tolerance: None,
-            curves,
-            patches: Vec::new(),
-            degenerate: Vec::new(),
-            unresolved: Vec::new(),
-            unjoined_edges: Vec::new(),
-            boxes: 0,
-            escalations: Escalations::default(),
-        };
-        let mut r = SilhouetteReport::new(model, view, &empty, time_ms, 1);
+        let mut r =
+            SilhouetteReport::new(model, view, &Silhouette::from_curves(curves), time_ms, 1);
         r.topology_certified = false;
         r.method = match method {
             super::baseline::BaselineMethod::Mesh => "mesh",
