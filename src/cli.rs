@@ -440,7 +440,7 @@ fn silhouette_text(r: &SilhouetteReport) -> String {
         );
     }
     for e in &r.unjoined_edges {
-        t += &format!("unjoined edge: patch {} {:?} / patch {} {:?} (the silhouette functions are not proportional there)\n", e.0, e.1, e.2, e.3);
+        t += &format!("unjoined edge: patch {} {:?} / patch {} {:?} (no proven join: the silhouette functions are not proportional and the normals not parallel there)\n", e.0, e.1, e.2, e.3);
     }
     let mut kinds: std::collections::BTreeMap<&str, usize> = std::collections::BTreeMap::new();
     for d in &r.degenerate {

@@ -209,6 +209,51 @@ fn proportional(p: &Bernstein<Rational>, q: &Bernstein<Rational>, reversed: bool
         .all(|(a, b)| Rational::from(a * &q.coeffs()[k]) == Rational::from(b * &p.coeffs()[k]))
 }
 
+/// Whether the two patches' exact normals are parallel and nonzero along the shared edge
+/// (tangent-plane continuity, proven exactly): `Ñ_a × Ñ_b ≡ 0` there and `Ñ_a · Ñ_b` has no
+/// root on the edge. Then `g_a = λ g_b` with `λ ≠ 0` along the edge, for every view, so the
+/// silhouette functions have the same zeros on it (`proofs/silhouette-join.md`).
+fn parallel_normals(
+    pa: &RationalPatch,
+    ea: Edge,
+    pb: &RationalPatch,
+    eb: Edge,
+    reversed: bool,
+) -> bool {
+    let (na, nb) = (pa.normal(), pb.normal());
+    let side = |n: &[Bernstein<Rational>; 3], e: Edge, rev: bool| -> [Bernstein<Rational>; 3] {
+        [0, 1, 2].map(|k| {
+            let p = side_polynomial(&n[k], e);
+            if rev {
+                let mut c = p.coeffs().to_vec();
+                c.reverse();
+                Bernstein::new(p.degrees(), c).expect("same shape")
+            } else {
+                p
+            }
+        })
+    };
+    let (a, b) = (side(&na, ea, false), side(&nb, eb, reversed));
+    let cross_zero = (0..3).all(|k| {
+        let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+        (&(&a[i] * &b[j]) - &(&a[j] * &b[i])).is_zero()
+    });
+    if !cross_zero {
+        return false;
+    }
+    let dot = &(&(&a[0] * &b[0]) + &(&a[1] * &b[1])) + &(&a[2] * &b[2]);
+    let roots = crate::solver::isolate_roots(
+        &dot,
+        &crate::solver::Ladder::default(),
+        40,
+        &mut Escalations::default(),
+    );
+    // A normal vanishing exactly at an end of the edge is a corner, which is joined by vertex
+    // identity and excluded from the side's crossings: only interior zeros matter.
+    let interior = |r: &crate::solver::Root| !matches!(r, crate::solver::Root::At { t } if *t == Dyadic::ZERO || *t == Dyadic::ONE);
+    !roots.identically_zero && !roots.roots.iter().any(interior) && roots.unresolved.is_empty()
+}
+
 /// Union-find over model nodes.
 struct Joins {
     parent: BTreeMap<Node, Node>,
@@ -313,7 +358,7 @@ pub fn silhouette(
             continue;
         }
         let (a, b) = (class[0], class[1]);
-        let joined = join_side(&tops, &gs, a, b, &mut joins)
+        let joined = join_side(&tops, &gs, &patches, a, b, &mut joins)
             || join_zero_side(&mut tops, &gs, a, b, &mut joins);
         if !joined {
             unjoined.push((a.patch, a.edge, b.patch, b.edge));
@@ -464,6 +509,7 @@ fn side_crossings(t: &CurveTopology, edge: Edge) -> Vec<(Dyadic, Dyadic, Crossin
 fn join_side(
     tops: &[CurveTopology],
     gs: &[Bernstein<Rational>],
+    patches: &[&RationalPatch],
     a: SideUse,
     b: SideUse,
     joins: &mut Joins,
@@ -471,7 +517,12 @@ fn join_side(
     let pa = side_polynomial(&gs[a.patch], a.edge);
     let pb = side_polynomial(&gs[b.patch], b.edge);
     let reversed = a.reversed != b.reversed;
-    if !proportional(&pa, &pb, reversed) {
+    if pa.is_zero() || pb.is_zero() {
+        return false;
+    }
+    if !proportional(&pa, &pb, reversed)
+        && !parallel_normals(patches[a.patch], a.edge, patches[b.patch], b.edge, reversed)
+    {
         return false;
     }
     let ca = side_crossings(&tops[a.patch], a.edge);
@@ -960,5 +1011,37 @@ impl SilhouetteReport {
                 threads,
             },
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn quad(p: [[i64; 3]; 4]) -> RationalPatch {
+        let q = |v: [i64; 3]| v.map(Rational::from);
+        RationalPatch::polynomial([1, 1], p.into_iter().map(q).collect()).unwrap()
+    }
+
+    /// Two patches of one plane, the second not a parallelogram: their normals along the
+    /// shared edge are parallel with a varying ratio (1 + v), so the silhouette functions are
+    /// not proportional but the join is still proven; lifting the far side makes a crease.
+    #[test]
+    fn parallel_normals_join_tangent_continuous_edges_only() {
+        let a = quad([[0, 0, 0], [0, 1, 0], [1, 0, 0], [1, 1, 0]]);
+        let b = quad([[1, 0, 0], [1, 1, 0], [2, 0, 0], [3, 1, 0]]);
+        assert!(parallel_normals(&a, Edge::U1, &b, Edge::U0, false));
+        let v = View::Direction([Rational::from(1), Rational::from(2), Rational::from(3)]);
+        let (ga, gb) = (silhouette_function(&a, &v), silhouette_function(&b, &v));
+        assert!(!proportional(
+            &side_polynomial(&ga, Edge::U1),
+            &side_polynomial(&gb, Edge::U0),
+            false
+        ));
+        let creased = quad([[1, 0, 0], [1, 1, 0], [2, 0, 1], [3, 1, 1]]);
+        assert!(!parallel_normals(&a, Edge::U1, &creased, Edge::U0, false));
+        // Opposite parameter directions are handled by the reversal flag.
+        let flipped = quad([[1, 1, 0], [1, 0, 0], [3, 1, 0], [2, 0, 0]]);
+        assert!(parallel_normals(&a, Edge::U1, &flipped, Edge::U0, true));
     }
 }

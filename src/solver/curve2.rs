@@ -35,7 +35,7 @@ impl Default for CurveOptions {
         CurveOptions {
             ladder: Ladder::default(),
             max_depth: 24,
-            max_boxes: 200_000,
+            max_boxes: 50_000,
             refine_width: 1e-9,
         }
     }
@@ -173,7 +173,7 @@ impl Question for BoxSigns<'_> {
 }
 
 /// The depth from which undecided box signs are escalated beyond f64.
-const ESCALATION_DEPTH: u32 = 6;
+const ESCALATION_DEPTH: u32 = 10;
 
 /// The strict sign of `p` on the box if its coefficients prove one, else `Unknown`.
 /// `fast` are the f64-interval coefficients carried down the subdivision.
