@@ -422,53 +422,23 @@ pub fn silhouette(
 }
 
 /// Divides out the linear factor of a side on which `g` vanishes identically (v for V0,
-/// 1 − v for V1, u for U0, 1 − u for U1), as many times as it divides; exact.
-///
-/// In the Bernstein basis of degree n, `t · Σ_j b_j B_{n−1,j} = Σ_j b_{j−1} (j/n) B_{n,j}`, so
-/// if the coefficients with j = 0 vanish, `g = t · ĝ` with `ĝ_j = g_{j+1} · n / (j + 1)`;
-/// symmetrically `(1 − t) · Σ b_j B_{n−1,j} = Σ b_j ((n − j)/n) B_{n,j}`.
+/// 1 − v for V1, u for U0, 1 − u for U1), as many times as it divides; exact
+/// ([`Bernstein::divide_face_factor`]).
 pub fn deflate_side(g: &Bernstein<Rational>, edge: Edge) -> Bernstein<Rational> {
-    let axis = match edge {
-        Edge::U0 | Edge::U1 => 0,
-        Edge::V0 | Edge::V1 => 1,
+    let (axis, at_one) = match edge {
+        Edge::U0 => (0, false),
+        Edge::U1 => (0, true),
+        Edge::V0 => (1, false),
+        Edge::V1 => (1, true),
     };
-    let low = matches!(edge, Edge::U0 | Edge::V0);
     let mut g = g.clone();
-    loop {
-        let d = [g.degrees()[0], g.degrees()[1]];
-        let n = d[axis];
-        if n == 0 || g.is_zero() {
-            return g;
+    while !g.is_zero() {
+        match g.divide_face_factor(axis, at_one) {
+            Some(q) => g = q,
+            None => break,
         }
-        // Index [along the other variable i, along `axis` j] in (u, v) order.
-        let at = |i: usize, j: usize| -> [usize; 2] {
-            if axis == 0 {
-                [j, i]
-            } else {
-                [i, j]
-            }
-        };
-        let other = d[1 - axis];
-        let side = if low { 0 } else { n };
-        if (0..=other).any(|i| g.coeff(&at(i, side)).cmp0() != std::cmp::Ordering::Equal) {
-            return g;
-        }
-        let mut nd = d;
-        nd[axis] = n - 1;
-        let mut coeffs = Vec::with_capacity((nd[0] + 1) * (nd[1] + 1));
-        for a in 0..=nd[0] {
-            for b in 0..=nd[1] {
-                let (i, j) = if axis == 0 { (b, a) } else { (a, b) };
-                let c = if low {
-                    Rational::from(g.coeff(&at(i, j + 1)) * n as u64) / (j as u64 + 1)
-                } else {
-                    Rational::from(g.coeff(&at(i, j)) * n as u64) / (n - j) as u64
-                };
-                coeffs.push(c);
-            }
-        }
-        g = Bernstein::new(&nd, coeffs).expect("degrees match");
     }
+    g
 }
 
 /// Which corner of the patch a crossing is at: 0 = (0,0), 1 = (1,0), 2 = (1,1), 3 = (0,1).

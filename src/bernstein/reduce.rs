@@ -56,4 +56,45 @@ impl Bernstein<Rational> {
         // Accept only if it elevates back exactly (checks every interior coefficient too).
         (candidate.elevate(axis, 1) == *self).then_some(candidate)
     }
+
+    /// Divides out the linear factor `t_axis` (`at_one = false`) or `1 − t_axis`
+    /// (`at_one = true`) exactly, if the polynomial vanishes on that face of the box (all the
+    /// coefficients on the face are zero); `None` otherwise, or at degree 0 along `axis`.
+    ///
+    /// In degree n, `t · Σ_j b_j B_{n−1,j} = Σ_j b_{j−1} (j/n) B_{n,j}`, so the quotient has
+    /// `b_j = c_{j+1} · n / (j + 1)`; symmetrically `(1 − t) · Σ b_j B_{n−1,j} =
+    /// Σ b_j ((n − j)/n) B_{n,j}` gives `b_j = c_j · n / (n − j)`.
+    ///
+    /// # Panics
+    /// If `axis >= nvars`.
+    pub fn divide_face_factor(&self, axis: usize, at_one: bool) -> Option<Self> {
+        assert!(axis < self.nvars, "axis out of range");
+        let n = self.degrees[axis];
+        if n == 0 {
+            return None;
+        }
+        let stride = self.stride(axis);
+        let face = if at_one { n } else { 0 };
+        let zero_face = self.coeffs.chunks_exact((n + 1) * stride).all(|block| {
+            block[face * stride..(face + 1) * stride]
+                .iter()
+                .all(|c| c.cmp0() == std::cmp::Ordering::Equal)
+        });
+        if !zero_face {
+            return None;
+        }
+        let mut out = Vec::with_capacity(self.coeffs.len() / (n + 1) * n);
+        for block in self.coeffs.chunks_exact((n + 1) * stride) {
+            for j in 0..n {
+                for s in 0..stride {
+                    out.push(if at_one {
+                        Rational::from(&block[j * stride + s] * n as u64) / (n - j) as u64
+                    } else {
+                        Rational::from(&block[(j + 1) * stride + s] * n as u64) / (j as u64 + 1)
+                    });
+                }
+            }
+        }
+        Some(self.with_degree(axis, n - 1, out))
+    }
 }

@@ -185,3 +185,28 @@ fn range_sign_is_conservative() {
     assert!(Bernstein::<Rational>::new(&[], vec![q(0)]).is_err());
     assert!(Bernstein::<Rational>::new(&[1; 5], vec![q(0); 32]).is_err());
 }
+
+#[test]
+fn face_factors_divide_exactly() {
+    let q = |n: i64| Rational::from(n);
+    // p(u, v, w) = v (1 - w) h(u, v, w), h an arbitrary trilinear polynomial.
+    let lin = |c: [i64; 8]| Bernstein::new(&[1, 1, 1], c.iter().map(|&k| q(k)).collect()).unwrap();
+    let v = lin([0, 0, 1, 1, 0, 0, 1, 1]);
+    let one_minus_w = lin([1, 0, 1, 0, 1, 0, 1, 0]);
+    let h = lin([1, -2, 3, 0, 2, -1, 4, 1]);
+    let p = &(&v * &one_minus_w) * &h;
+    let d = p
+        .divide_face_factor(1, false)
+        .unwrap()
+        .divide_face_factor(2, true)
+        .unwrap();
+    let x = [
+        Rational::from((2, 7)),
+        Rational::from((3, 11)),
+        Rational::from((5, 13)),
+    ];
+    assert_eq!(d.eval(&x), h.eval(&x));
+    // No factor where the face does not vanish.
+    assert!(h.divide_face_factor(0, false).is_none());
+    assert!(p.divide_face_factor(1, true).is_none());
+}
