@@ -11,7 +11,7 @@
 //! with its box, never guessed.
 
 use super::dyadic::{Dyadic, DyadicBox};
-use super::precision::{Escalations, Ladder, Question};
+use super::precision::{Escalations, Ladder, Level, Question};
 use super::univariate::{isolate_roots_in, refine_root, PointSign, Root};
 use crate::bernstein::Bernstein;
 use crate::number::{Certified, Interval, Number, Precision, Rational, Sign};
@@ -104,6 +104,40 @@ pub struct Branch {
     pub complete: bool,
 }
 
+/// How a leaf box of the subdivision was settled.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum CellKind {
+    /// Every Bernstein coefficient of g on the box has this strict sign: no curve.
+    Excluded {
+        /// The sign of g.
+        sign: Sign,
+    },
+    /// Every coefficient of ∂g/∂m on the box has this strict sign: the curve is a union of
+    /// graphs over the other variable.
+    Graph {
+        /// The variable g is monotone in (0: u, 1: v).
+        m: usize,
+        /// The sign of ∂g/∂m.
+        sign: Sign,
+    },
+    /// Not decided.
+    Unresolved,
+}
+
+/// A leaf box of the subdivision, with what was proven on it and at which precision.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct Cell {
+    /// The box.
+    #[serde(rename = "box")]
+    pub cell: DyadicBox,
+    /// What holds on it.
+    #[serde(flatten)]
+    pub kind: CellKind,
+    /// The precision level that settled the deciding sign (`None` if unresolved).
+    pub level: Option<Level>,
+}
+
 /// The certified topology of `g = 0` on [0,1]^2.
 #[derive(Clone, Debug, Default, serde::Serialize)]
 pub struct CurveTopology {
@@ -115,6 +149,13 @@ pub struct CurveTopology {
     pub arcs: Vec<Arc>,
     /// Where each crossing is: a box `[lo, hi]` in (u, v) containing it (a point if exact).
     pub locations: BTreeMap<CrossingId, [[f64; 2]; 2]>,
+    /// For each crossing inside a segment, the exact interval `[lo, hi]` of the free variable
+    /// that contains it and no other root of g on its line (a point if the root is dyadic).
+    pub intervals: BTreeMap<CrossingId, (Dyadic, Dyadic)>,
+    /// The leaf boxes, which tile the square, with how each was settled.
+    pub cells: Vec<Cell>,
+    /// Crossings where the curve touches a box edge without ending there (located too).
+    pub touches: Vec<CrossingId>,
     /// Undecided regions.
     pub unresolved: Vec<Unresolved>,
     /// Boxes examined.
@@ -175,15 +216,15 @@ impl Question for BoxSigns<'_> {
 /// The depth from which undecided box signs are escalated beyond f64.
 const ESCALATION_DEPTH: u32 = 10;
 
-/// The strict sign of `p` on the box if its coefficients prove one, else `Unknown`.
-/// `fast` are the f64-interval coefficients carried down the subdivision.
+/// The strict sign of `p` on the box if its coefficients prove one, else `Unknown`, with the
+/// level that proved it. `fast` are the f64-interval coefficients carried down the subdivision.
 fn strict_sign(
     fast: &Bernstein<Interval>,
     exact: &Bernstein<Rational>,
     cell: DyadicBox,
     ladder: Option<&Ladder>,
     stats: &mut Escalations,
-) -> Sign {
+) -> (Sign, Option<Level>) {
     let mut pos = false;
     let mut neg = false;
     let mut unknown = false;
@@ -199,21 +240,22 @@ fn strict_sign(
             Sign::Unknown => unknown = true,
         }
         if pos && neg {
-            return Sign::Unknown;
+            return (Sign::Unknown, None);
         }
     }
     if !unknown {
-        stats.record(Some(super::precision::Level::F64));
-        return if pos { Sign::Positive } else { Sign::Negative };
+        stats.record(Some(Level::F64));
+        let s = if pos { Sign::Positive } else { Sign::Negative };
+        return (s, Some(Level::F64));
     }
     // Only one strict sign seen and some undecided coefficients: recompute from exact input,
     // if the caller wants escalation here (it may prefer to subdivide first).
     match ladder {
-        Some(l) => l
-            .escalate(&BoxSigns { p: exact, cell }, stats)
-            .0
-            .unwrap_or(Sign::Unknown),
-        None => Sign::Unknown,
+        Some(l) => match l.escalate(&BoxSigns { p: exact, cell }, stats) {
+            (Some(s), level) if s.is_known() => (s, level),
+            _ => (Sign::Unknown, None),
+        },
+        None => (Sign::Unknown, None),
     }
 }
 
@@ -289,7 +331,7 @@ impl<'a> Lines<'a> {
         ];
         let fast = self.g_fast.eval(&x).sign();
         let s = if fast.is_known() {
-            self.stats.record(Some(super::precision::Level::F64));
+            self.stats.record(Some(Level::F64));
             fast
         } else {
             let q = PointSign {
@@ -379,6 +421,7 @@ pub fn solve_curve(g: &Bernstein<Rational>, opts: &CurveOptions) -> CurveTopolog
 
     // Phase 1: subdivide until every box is excluded, monotone, or out of budget.
     let mut leaves: Vec<(DyadicBox, Leaf)> = Vec::new();
+    let mut cells: Vec<Cell> = Vec::new();
     let mut stack: Vec<(DyadicBox, u32, Bernstein<Interval>)> =
         vec![(DyadicBox::UNIT, 0, g.convert(Precision::F64))];
     while let Some((cell, depth, coeffs)) = stack.pop() {
@@ -387,15 +430,27 @@ pub fn solve_curve(g: &Bernstein<Rational>, opts: &CurveOptions) -> CurveTopolog
         // large boxes, which subdivision resolves more cheaply than higher precision:
         // escalate only on small boxes, and at the depth budget.
         let ladder = (depth >= ESCALATION_DEPTH || depth >= opts.max_depth).then_some(&opts.ladder);
-        if strict_sign(&coeffs, g, cell, ladder, &mut stats).is_known() {
+        let (sign, level) = strict_sign(&coeffs, g, cell, ladder, &mut stats);
+        if sign.is_known() {
             leaves.push((cell, Leaf::Excluded));
+            cells.push(Cell {
+                cell,
+                kind: CellKind::Excluded { sign },
+                level,
+            });
             continue;
         }
-        let mono = [(0, &gu), (1, &gv)].into_iter().find(|(axis, exact)| {
-            strict_sign(&coeffs.deriv(*axis), exact, cell, ladder, &mut stats).is_known()
+        let mono = [(0, &gu), (1, &gv)].into_iter().find_map(|(axis, exact)| {
+            let (sign, level) = strict_sign(&coeffs.deriv(axis), exact, cell, ladder, &mut stats);
+            sign.is_known().then_some((axis, sign, level))
         });
-        if let Some((m, _)) = mono {
+        if let Some((m, sign, level)) = mono {
             leaves.push((cell, Leaf::Graph { m }));
+            cells.push(Cell {
+                cell,
+                kind: CellKind::Graph { m, sign },
+                level,
+            });
             continue;
         }
         let children = (depth < opts.max_depth && out.boxes + stack.len() < opts.max_boxes)
@@ -403,6 +458,11 @@ pub fn solve_curve(g: &Bernstein<Rational>, opts: &CurveOptions) -> CurveTopolog
             .flatten()
             .and_then(|(a, b)| Some((a.split(1)?, b.split(1)?)));
         let Some(((aa, ab), (ba, bb))) = children else {
+            cells.push(Cell {
+                cell,
+                kind: CellKind::Unresolved,
+                level: None,
+            });
             leaves.push((cell, Leaf::Unresolved("no direction in which g is monotone within the depth budget: a singular point of the curve, or a critical point of g very close to it")));
             continue;
         };
@@ -476,14 +536,22 @@ pub fn solve_curve(g: &Bernstein<Rational>, opts: &CurveOptions) -> CurveTopolog
     points.dedup();
 
     // Phase 4: locations of crossings, refined.
+    let mut touch_ids: Vec<CrossingId> = touches.iter().map(|t| t.0).collect();
+    touch_ids.sort();
+    touch_ids.dedup();
     for id in arcs
         .iter()
         .flat_map(|a| [a.from, a.to])
         .chain(points.iter().copied())
+        .chain(touch_ids.iter().copied())
     {
         {
             if let std::collections::btree_map::Entry::Vacant(slot) = out.locations.entry(id) {
-                slot.insert(locate(&mut lines, id));
+                let (location, interval) = locate(&mut lines, id);
+                slot.insert(location);
+                if let Some(i) = interval {
+                    out.intervals.insert(id, i);
+                }
             }
         }
     }
@@ -498,15 +566,18 @@ pub fn solve_curve(g: &Bernstein<Rational>, opts: &CurveOptions) -> CurveTopolog
         complete: true,
     }));
     out.arcs = arcs;
+    out.cells = cells;
+    out.touches = touch_ids;
     out
 }
 
-/// Where a crossing is, refined to `refine_width`.
-fn locate(lines: &mut Lines, id: CrossingId) -> [[f64; 2]; 2] {
+/// Where a crossing is, refined to `refine_width`: a box in (u, v) and, for a crossing inside
+/// a segment, the exact isolating interval along its line.
+fn locate(lines: &mut Lines, id: CrossingId) -> ([[f64; 2]; 2], Option<(Dyadic, Dyadic)>) {
     match id {
         CrossingId::Exact { u, v } => {
             let ((u0, u1), (v0, v1)) = (u.to_f64_bounds(), v.to_f64_bounds());
-            [[u0, v0], [u1, v1]]
+            ([[u0, v0], [u1, v1]], None)
         }
         CrossingId::Segment {
             fixed,
@@ -515,7 +586,7 @@ fn locate(lines: &mut Lines, id: CrossingId) -> [[f64; 2]; 2] {
             s1,
             k,
         } => {
-            let (lo, hi) = match lines.segment(fixed, c, s0, s1) {
+            let (dlo, dhi) = match lines.segment(fixed, c, s0, s1) {
                 SegmentRoots::Roots(r) if k < r.len() => {
                     let p = lines.poly(fixed, c).clone();
                     let mut stats = Escalations::default();
@@ -527,16 +598,18 @@ fn locate(lines: &mut Lines, id: CrossingId) -> [[f64; 2]; 2] {
                         &mut stats,
                     );
                     lines.stats.merge(&stats);
-                    (fine.lo().to_f64_bounds().0, fine.hi().to_f64_bounds().1)
+                    (fine.lo(), fine.hi())
                 }
-                _ => (s0.to_f64_bounds().0, s1.to_f64_bounds().1),
+                _ => (s0, s1),
             };
+            let (lo, hi) = (dlo.to_f64_bounds().0, dhi.to_f64_bounds().1);
             let (c0, c1) = c.to_f64_bounds();
-            if fixed == 0 {
+            let location = if fixed == 0 {
                 [[c0, lo], [c1, hi]]
             } else {
                 [[lo, c0], [hi, c1]]
-            }
+            };
+            (location, Some((dlo, dhi)))
         }
     }
 }

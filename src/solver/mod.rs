@@ -1,6 +1,8 @@
 //! Layer 4: the solver. Exact dyadic boxes, the precision controller, certified root
 //! isolation; every analysis is built on these.
 
+pub mod certificate;
+pub mod checker;
 pub mod curve2;
 pub mod dyadic;
 pub mod precision;
