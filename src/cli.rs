@@ -4,6 +4,7 @@
 use crate::analysis::baseline::{baseline_silhouette, BaselineMethod};
 use crate::analysis::render::silhouette_svg;
 use crate::analysis::silhouette::{parse_vector, silhouette, Silhouette, SilhouetteReport, View};
+use crate::analysis::silhouette_certificate::{check_silhouette, SilhouetteCertificate};
 use crate::io::{read_model, read_model_bytes};
 use crate::model::{default_weld, Format, ModelInfo, WeldTolerance};
 use crate::solver::CurveOptions;
@@ -93,6 +94,24 @@ enum Command {
         /// "mesh" (control-mesh normals) or "srf-node" (signs at the control points' parameters).
         #[arg(long, value_enum, default_value_t = Method::Certified)]
         method: Method,
+        /// Also write the certificate of what was proven (JSON; see README) to this file, for
+        /// `limn check` (refused if it exists, unless --force; certified method only).
+        #[arg(long)]
+        certificate: Option<PathBuf>,
+    },
+    /// Re-verifies a silhouette certificate against its model, independently of the solver, in
+    /// exact arithmetic. Exit 0: valid; 1: invalid (the first failing item is named).
+    Check {
+        /// The model file the certificate was written for.
+        model: PathBuf,
+        /// The certificate (from `limn silhouette --certificate`).
+        certificate: PathBuf,
+        /// Output format.
+        #[arg(long, value_enum, default_value_t = OutputFormat::Text)]
+        format: OutputFormat,
+        /// Worker threads (default: all cores).
+        #[arg(long)]
+        threads: Option<usize>,
     },
     /// Runs the main job on the embedded Newell teapot (no files needed).
     Demo {
@@ -226,6 +245,7 @@ where
             method,
             tol,
             abs_tol,
+            certificate,
         } => {
             if let Some(t) = tol {
                 if !(t.is_finite() && t > 0.0) {
@@ -256,13 +276,21 @@ where
             if threads == Some(0) {
                 return Err(CliError::input("--threads: expected at least 1"));
             }
-            if let Some(path) = &output {
+            for path in output.iter().chain(&certificate) {
                 if path.exists() && !force {
                     return Err(CliError::input(format!(
                         "{}: exists; not overwritten (use --force)",
                         path.display()
                     )));
                 }
+            }
+            if certificate.is_some() && method != Method::Certified {
+                return Err(CliError::input(
+                    "--certificate: only the certified method proves anything",
+                ));
+            }
+            if output.is_some() && output == certificate {
+                return Err(CliError::input("-o and --certificate name the same file"));
             }
             let name = model.display().to_string();
             let m = read_model(&model).map_err(|e| CliError::input(e.to_string()))?;
@@ -302,6 +330,17 @@ where
                     (Silhouette::from_curves(curves), r)
                 }
             };
+            if let Some(path) = &certificate {
+                let cert = pool.install(|| SilhouetteCertificate::new(&name, &view, &s));
+                let json = serde_json::to_string(&cert).map_err(|e| CliError {
+                    message: format!("cannot serialise the certificate: {e}"),
+                    code: 1,
+                })?;
+                std::fs::write(path, json).map_err(|e| CliError {
+                    message: format!("{}: cannot write: {e}", path.display()),
+                    code: 1,
+                })?;
+            }
             let text = render_silhouette(format, &report, &m, &view, &s)?;
             match output {
                 Some(path) => std::fs::write(&path, text).map_err(|e| CliError {
@@ -309,6 +348,71 @@ where
                     code: 1,
                 }),
                 None => w(out.write_all(text.as_bytes())),
+            }
+        }
+        Command::Check {
+            model,
+            certificate,
+            format,
+            threads,
+        } => {
+            if threads == Some(0) {
+                return Err(CliError::input("--threads: expected at least 1"));
+            }
+            let m = read_model(&model).map_err(|e| CliError::input(e.to_string()))?;
+            let text = std::fs::read_to_string(&certificate).map_err(|e| {
+                CliError::input(format!("{}: cannot read: {e}", certificate.display()))
+            })?;
+            let cert: SilhouetteCertificate = serde_json::from_str(&text).map_err(|e| {
+                CliError::input(format!(
+                    "{}: line {}, column {}: not a silhouette certificate: {e}",
+                    certificate.display(),
+                    e.line(),
+                    e.column()
+                ))
+            })?;
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads.unwrap_or(0))
+                .build()
+                .map_err(|e| CliError {
+                    message: format!("cannot start threads: {e}"),
+                    code: 1,
+                })?;
+            let start = std::time::Instant::now();
+            let verdict = pool.install(|| check_silhouette(&m, &cert));
+            let ms = start.elapsed().as_secs_f64() * 1e3;
+            let line = match (&verdict, format) {
+                (Ok(v), OutputFormat::Text) => format!(
+                    "valid: {} patches, {} cells, {} crossings, {} arcs, {} branches re-verified \
+                     in exact arithmetic; {} ({ms:.1} ms)\n",
+                    v.patches,
+                    v.cells,
+                    v.crossings,
+                    v.arcs,
+                    v.branches,
+                    if v.certified {
+                        "the whole model is decided".to_string()
+                    } else {
+                        format!("{} cells unresolved (nothing claimed there)", v.unresolved)
+                    }
+                ),
+                (Err(e), OutputFormat::Text) => format!("invalid: {e}\n"),
+                (Ok(v), OutputFormat::Json) => format!(
+                    "{}\n",
+                    serde_json::json!({"valid": true, "summary": v, "time_ms": ms})
+                ),
+                (Err(e), OutputFormat::Json) => format!(
+                    "{}\n",
+                    serde_json::json!({"valid": false, "item": e.item, "reason": e.reason, "time_ms": ms})
+                ),
+            };
+            w(out.write_all(line.as_bytes()))?;
+            match verdict {
+                Ok(_) => Ok(()),
+                Err(_) => Err(CliError {
+                    message: format!("{}: invalid certificate", certificate.display()),
+                    code: 1,
+                }),
             }
         }
         Command::Demo { format } => {

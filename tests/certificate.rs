@@ -205,3 +205,44 @@ proptest! {
         }
     }
 }
+
+/// Whole-model certificates of exact models, parallel and perspective views: the silhouette
+/// function relation (with collapsed-side factors divided out) and every curve claim hold; a
+/// changed coefficient of g, or a wrong divided side, is caught.
+#[test]
+fn model_certificates_check_against_the_model() {
+    use limn::analysis::silhouette::silhouette;
+    use limn::analysis::silhouette_certificate::{check_silhouette, SilhouetteCertificate};
+    use limn::model::{Model, WeldTolerance};
+    let sphere = Model::from_patches(Format::Json, shapes::sphere(&q(3, 2)));
+    let torus = Model::from_patches(Format::Json, shapes::torus(&q(3, 1), &q(1, 1)));
+    let eye = View::Eye([q(7, 1), q(-5, 2), q(9, 1)]);
+    for (m, view) in [
+        (&sphere, dir(1, 2, 3)),
+        (&sphere, eye.clone()),
+        (&torus, eye),
+    ] {
+        let s = silhouette(
+            m,
+            &view,
+            &CurveOptions::default(),
+            WeldTolerance::Exact,
+            None,
+        );
+        let cert = SilhouetteCertificate::new("exact", &view, &s);
+        let v = check_silhouette(m, &cert).unwrap_or_else(|e| panic!("{e}"));
+        assert!(v.certified && v.arcs > 0);
+        // The sphere's poles are collapsed sides: their factors were divided out.
+        let divided = cert.patches.iter().find(|p| !p.divided.is_empty()).cloned();
+        if let Some(p) = divided {
+            let mut bad = cert.clone();
+            bad.patches[p.patch].divided.clear();
+            let e = check_silhouette(m, &bad).unwrap_err();
+            assert_eq!(e.item, format!("patch {}", p.patch), "{e}");
+        }
+        let mut bad = cert.clone();
+        let k = bad.patches[0].curve.g.len() / 2;
+        bad.patches[0].curve.g[k] = format!("{}1/3", bad.patches[0].curve.g[k].replace('/', "0/"));
+        assert!(check_silhouette(m, &bad).is_err());
+    }
+}

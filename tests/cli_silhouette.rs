@@ -288,3 +288,93 @@ fn tolerance_certifies_the_drawing() {
     assert_eq!(code, Some(2));
     assert!(err.contains("--tol"), "{err}");
 }
+
+#[test]
+fn certificates_are_written_and_checked_independently() {
+    let model = "fixtures/bezier/teapot.bpt";
+    let cert = tmp("teapot-cert.json");
+    let _ = std::fs::remove_file(&cert);
+    let c = cert.to_str().unwrap();
+    let (code, _, err) = limn(&["silhouette", model, "--dir", "1,2,3", "--certificate", c]);
+    assert_eq!(code, Some(0), "{err}");
+    // Not overwritten without --force.
+    let (code, _, err) = limn(&["silhouette", model, "--dir", "1,2,3", "--certificate", c]);
+    assert_eq!(code, Some(2));
+    assert!(err.contains("exists"), "{err}");
+    let (code, out, err) = limn(&["check", model, c]);
+    assert_eq!(code, Some(0), "{out}{err}");
+    assert!(out.starts_with("valid: 32 patches"), "{out}");
+    assert!(out.contains("the whole model is decided"), "{out}");
+    // JSON verdict.
+    let (code, out, _) = limn(&["check", model, c, "--format", "json"]);
+    assert_eq!(code, Some(0));
+    let v: Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["valid"], true);
+    assert_eq!(v["summary"]["patches"], 32);
+
+    // The certificate read back and mutated: a sign flipped, a box moved, a piece dropped,
+    // a different view, another model: each is invalid (exit 1) with the failing item named.
+    let text = std::fs::read_to_string(&cert).unwrap();
+    let original: Value = serde_json::from_str(&text).unwrap();
+    let first_with = |key: &str| {
+        original["patches"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .position(|p| !p["curve"][key].as_array().unwrap().is_empty())
+            .unwrap()
+    };
+    let pa = first_with("arcs");
+    type Mutation = Box<dyn Fn(&mut Value)>;
+    let mutations: Vec<(&str, Mutation)> = vec![
+        (
+            "cell",
+            Box::new(move |v: &mut Value| {
+                let s = &mut v["patches"][pa]["curve"]["cells"][0]["sign"];
+                *s = Value::from(-s.as_i64().unwrap());
+            }),
+        ),
+        (
+            "cells",
+            Box::new(move |v: &mut Value| {
+                v["patches"][pa]["curve"]["cells"]
+                    .as_array_mut()
+                    .unwrap()
+                    .pop();
+            }),
+        ),
+        (
+            "arc",
+            Box::new(move |v: &mut Value| {
+                v["patches"][pa]["curve"]["arcs"]
+                    .as_array_mut()
+                    .unwrap()
+                    .pop();
+            }),
+        ),
+        (
+            "patch",
+            Box::new(|v: &mut Value| v["view"]["vector"][0] = Value::from("2")),
+        ),
+    ];
+    for (what, mutate) in mutations {
+        let mut v = original.clone();
+        mutate(&mut v);
+        let bad = tmp(&format!("teapot-cert-{what}.json"));
+        std::fs::write(&bad, v.to_string()).unwrap();
+        let (code, out, err) = limn(&["check", model, bad.to_str().unwrap()]);
+        assert_eq!(code, Some(1), "{what}: {out}{err}");
+        assert!(out.starts_with("invalid: "), "{what}: {out}");
+        assert!(out.contains(what), "{what}: {out}");
+    }
+    // Another model: the patch count differs.
+    let (code, out, _) = limn(&["check", "fixtures/bezier/newell_teaset/teacup", c]);
+    assert_eq!(code, Some(1), "{out}");
+    // Not a certificate: exit 2, file and place named.
+    let junk = tmp("junk-cert.json");
+    std::fs::write(&junk, "{\"format\": 3}").unwrap();
+    let (code, _, err) = limn(&["check", model, junk.to_str().unwrap()]);
+    assert_eq!(code, Some(2));
+    assert!(err.contains("junk-cert.json: line 1"), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+}

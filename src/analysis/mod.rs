@@ -4,4 +4,5 @@ pub mod accuracy;
 pub mod baseline;
 pub mod render;
 pub mod silhouette;
+pub mod silhouette_certificate;
 pub mod vec3;

@@ -101,6 +101,18 @@ pub struct SilhouetteCurve {
     pub points: Vec<[f64; 3]>,
 }
 
+/// What the curve solver was given and proved for one patch.
+#[derive(Clone, Debug)]
+pub struct SolvedPatch {
+    /// The polynomial solved.
+    pub g: Bernstein<Rational>,
+    /// The collapsed sides whose linear factor was divided out of the silhouette function,
+    /// with how many times.
+    pub divided: Vec<(Edge, usize)>,
+    /// The solver's result.
+    pub topology: CurveTopology,
+}
+
 /// The silhouette of a model.
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct Silhouette {
@@ -109,6 +121,11 @@ pub struct Silhouette {
     /// Per patch: its certified topology in the parameter square.
     #[serde(skip)]
     pub patches: Vec<CurveTopology>,
+    /// Per patch: the exact polynomial solved (g with the factors of collapsed sides divided
+    /// out), the sides divided with their powers, and the solver's topology before joins
+    /// (what a certificate states).
+    #[serde(skip)]
+    pub solved: Vec<SolvedPatch>,
     /// Degenerate cases.
     pub degenerate: Vec<Degenerate>,
     /// Undecided regions: (patch, box, reason).
@@ -129,6 +146,7 @@ impl Silhouette {
         Silhouette {
             curves,
             patches: Vec::new(),
+            solved: Vec::new(),
             degenerate: Vec::new(),
             unresolved: Vec::new(),
             unjoined_edges: Vec::new(),
@@ -298,6 +316,7 @@ pub fn silhouette(
     // On a collapsed side the normal vanishes, so g has that side's linear factor: divide it
     // out (exactly), so that the spurious zero set along the side does not meet the real curve
     // in a singular point. The sign inside the square is unchanged.
+    let mut divided: Vec<Vec<(Edge, usize)>> = vec![Vec::new(); gs.len()];
     let solve_gs: Vec<Bernstein<Rational>> = gs
         .iter()
         .enumerate()
@@ -305,13 +324,27 @@ pub fn silhouette(
             let mut g = g.clone();
             for &(patch, edge, _) in &adj.collapsed {
                 if patch == i {
-                    g = deflate_side(&g, edge);
+                    let (h, k) = deflate_side_counted(&g, edge);
+                    g = h;
+                    if k > 0 {
+                        divided[i].push((edge, k));
+                    }
                 }
             }
             g
         })
         .collect();
     let mut tops: Vec<CurveTopology> = solve_gs.par_iter().map(|g| solve_curve(g, opts)).collect();
+    let solved: Vec<SolvedPatch> = solve_gs
+        .iter()
+        .zip(&tops)
+        .zip(divided)
+        .map(|((g, t), divided)| SolvedPatch {
+            g: g.clone(),
+            divided,
+            topology: t.clone(),
+        })
+        .collect();
 
     let mut degenerate = Vec::new();
     let mut unresolved = Vec::new();
@@ -412,6 +445,7 @@ pub fn silhouette(
     Silhouette {
         curves,
         patches: tops,
+        solved,
         degenerate,
         unresolved,
         unjoined_edges: unjoined,
@@ -425,6 +459,11 @@ pub fn silhouette(
 /// 1 − v for V1, u for U0, 1 − u for U1), as many times as it divides; exact
 /// ([`Bernstein::divide_face_factor`]).
 pub fn deflate_side(g: &Bernstein<Rational>, edge: Edge) -> Bernstein<Rational> {
+    deflate_side_counted(g, edge).0
+}
+
+/// [`deflate_side`], with the number of factors divided out.
+pub fn deflate_side_counted(g: &Bernstein<Rational>, edge: Edge) -> (Bernstein<Rational>, usize) {
     let (axis, at_one) = match edge {
         Edge::U0 => (0, false),
         Edge::U1 => (0, true),
@@ -432,13 +471,17 @@ pub fn deflate_side(g: &Bernstein<Rational>, edge: Edge) -> Bernstein<Rational> 
         Edge::V1 => (1, true),
     };
     let mut g = g.clone();
+    let mut k = 0;
     while !g.is_zero() {
         match g.divide_face_factor(axis, at_one) {
-            Some(q) => g = q,
+            Some(q) => {
+                g = q;
+                k += 1;
+            }
             None => break,
         }
     }
-    g
+    (g, k)
 }
 
 /// Which corner of the patch a crossing is at: 0 = (0,0), 1 = (1,0), 2 = (1,1), 3 = (0,1).

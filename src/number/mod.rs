@@ -27,6 +27,7 @@ mod parse;
 mod rational;
 mod sign;
 
+pub use bigrational::to_big_rational;
 pub use interval::Interval;
 pub use mpfr_float::MpFloat;
 pub use mpfr_interval::MpInterval;
