@@ -337,10 +337,18 @@ fn baselines_agree_with_limn_on_an_easy_case() {
 fn traced_sphere_silhouette_is_within_the_tolerance() {
     // Radius 2, direction (1, 2, 2)/3: the true silhouette is the great circle in the plane
     // x + 2y + 2z = 0. Every point of every drawn segment (checked at vertices and midpoints)
-    // must be within the reported bound, which must be at most the tolerance.
+    // must be within the reported bound, which must be at most the tolerance (soundness); and
+    // every point of the true circle must be within the bound of the drawing (completeness).
     let m = model(shapes::sphere(&q(2, 1)));
     let n = [1.0 / 3.0, 2.0 / 3.0, 2.0 / 3.0];
-    for tol in [1e-3, 1e-6] {
+    // An orthonormal basis of the circle's plane.
+    let e1 = [2.0 / 3.0, 1.0 / 3.0, -2.0 / 3.0];
+    let e2 = [
+        n[1] * e1[2] - n[2] * e1[1],
+        n[2] * e1[0] - n[0] * e1[2],
+        n[0] * e1[1] - n[1] * e1[0],
+    ];
+    for tol in [1e-3, 1e-6, 1e-9] {
         let s = silhouette(
             &m,
             &dir(1, 2, 2),
@@ -368,6 +376,34 @@ fn traced_sphere_silhouette_is_within_the_tolerance() {
             for p in [w[0], mid] {
                 assert!(dist(p) <= bound + 1e-12, "tol {tol}: {} > {bound}", dist(p));
             }
+        }
+        let seg_dist = |p: [f64; 3], a: [f64; 3], b: [f64; 3]| {
+            let d = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+            let w = [p[0] - a[0], p[1] - a[1], p[2] - a[2]];
+            let dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+            let t = if dd > 0.0 {
+                ((w[0] * d[0] + w[1] * d[1] + w[2] * d[2]) / dd).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            let r = [w[0] - t * d[0], w[1] - t * d[1], w[2] - t * d[2]];
+            (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt()
+        };
+        let mut pts = c.points.clone();
+        if c.closed {
+            pts.push(pts[0]);
+        }
+        for k in 0..997 {
+            let a = k as f64 * std::f64::consts::TAU / 997.0;
+            let p = [0, 1, 2].map(|i| 2.0 * (a.cos() * e1[i] + a.sin() * e2[i]));
+            let near = pts
+                .windows(2)
+                .map(|w| seg_dist(p, w[0], w[1]))
+                .fold(f64::INFINITY, f64::min);
+            assert!(
+                near <= bound + 1e-12,
+                "tol {tol}: true point {k} is {near} away"
+            );
         }
     }
 }

@@ -7,7 +7,7 @@ use crate::solver::curve2::Arc;
 use crate::surface::RationalPatch;
 
 /// The most vertices placed on one arc before giving up on the tolerance.
-const MAX_ARC_POINTS: usize = 1 << 14;
+const MAX_ARC_POINTS: usize = 1 << 18;
 
 /// `x / w` for an interval `w` of strict sign, outward rounded (one ulp each way covers the
 /// round-to-nearest error of each candidate quotient).
@@ -83,11 +83,37 @@ impl PatchAccuracy {
         }
     }
 
-    /// The range of a polynomial over a box, enclosed.
+    /// The range of a polynomial over a box, enclosed: the Bernstein coefficients of its
+    /// restriction (two de Casteljau splits per axis, the second at an interval parameter that
+    /// contains the exact one, so the result encloses the exact restriction) bound it.
     fn range(p: &Bernstein<Interval>, lo: [f64; 2], hi: [f64; 2]) -> Interval {
-        let q = |x: f64| Rational::from_f64(x).unwrap_or_default();
-        let r = p.restrict_box_rational(&lo.map(q), &hi.map(q));
-        let (a, b) = r.range_f64();
+        let mut q = p.clone();
+        for axis in 0..2 {
+            let (a, b) = (lo[axis], hi[axis]);
+            if !(0.0 <= a && a < b && b <= 1.0) {
+                if a == b && (0.0..=1.0).contains(&a) {
+                    // A degenerate box side (an arc on an edge): restrict to the point.
+                    q = q.restrict(axis, &Interval::point(a), &Interval::point(a));
+                    continue;
+                }
+                return Interval::new(f64::NEG_INFINITY, f64::INFINITY);
+            }
+            if a > 0.0 {
+                q = q.subdivide(axis, &Interval::point(a)).1;
+            }
+            if b < 1.0 {
+                let t = div(
+                    Interval::point(b).sub(&Interval::point(a)),
+                    Interval::point(1.0).sub(&Interval::point(a)),
+                );
+                let Some(t) = t.and_then(|t| Interval::try_new(t.lo().max(0.0), t.hi().min(1.0)))
+                else {
+                    return Interval::new(f64::NEG_INFINITY, f64::INFINITY);
+                };
+                q = q.subdivide(axis, &t).0;
+            }
+        }
+        let (a, b) = q.range_f64();
         Interval::try_new(a, b).unwrap_or(Interval::new(f64::NEG_INFINITY, f64::INFINITY))
     }
 
@@ -136,64 +162,72 @@ impl PatchAccuracy {
         Some((mag(p1), mag(p2)))
     }
 
-    /// The sign of g at a point, enclosed.
-    fn sign_at(&self, m: usize, x: f64, level: f64) -> Sign {
-        let mut pt = [Interval::point(0.0); 2];
-        pt[m] = Interval::point(x);
-        pt[1 - m] = Interval::point(level);
-        self.g[0].eval(&pt).sign()
-    }
-
-    /// A bracket `[x, y]` of the arc's point on the line o = level within [m0, m1]: a secant
-    /// estimate in f64, then certified by opposite enclosed signs of g at the bracket's ends
-    /// (g is strictly monotone in m on the box, so the one root between them is the arc's).
-    fn point_on_line(&self, m: usize, m0: f64, m1: f64, level: f64) -> Option<(f64, f64)> {
-        let s0 = self.sign_at(m, m0, level);
-        let s1 = self.sign_at(m, m1, level);
-        if !s0.is_nonzero() || !s1.is_nonzero() || s0 == s1 {
-            return None;
-        }
-        let f = |x: f64| {
-            let mut pt = [0.0; 2];
-            pt[m] = x;
-            pt[1 - m] = level;
-            self.g_f64.eval(&pt)
-        };
-        let (mut x0, mut x1) = (m0, m1);
-        let (mut f0, mut f1) = (f(x0), f(x1));
-        let mut side = 0;
-        for _ in 0..40 {
-            if f0 * f1 >= 0.0 || f0.is_nan() || f1.is_nan() || (x1 - x0) <= 1e-15 * (1.0 + x0.abs())
-            {
-                break;
-            }
-            let x = (x0 * f1 - x1 * f0) / (f1 - f0);
+    /// A bracket `[x, y]` of the arc's point on the line o = level, with m in [m0, m1] (the
+    /// arc's box): Newton's method in f64 from `guess` (bisection-safeguarded), then certified
+    /// by opposite enclosed signs of g at the bracket's ends. g is strictly monotone along m on
+    /// the box, so the line meets the curve in the box at most once and the root between them
+    /// is the arc's point (`proofs/chord-accuracy.md`).
+    fn point_on_line(
+        &self,
+        m: usize,
+        m0: f64,
+        m1: f64,
+        level: f64,
+        guess: f64,
+    ) -> Option<(f64, f64)> {
+        // g on the line o = level, once: in f64 for Newton, in intervals (enclosing the exact
+        // coefficients, `de-casteljau-enclosure.md`) for the certified signs.
+        let line = on_line(&self.g_f64, m, level);
+        let dline = line.deriv(0);
+        let exact_line = on_line(&self.g[0], m, Interval::point(level));
+        let f = |x: f64| line.eval(&[x]);
+        let df = |x: f64| dline.eval(&[x]);
+        let sign = |x: f64| exact_line.eval(&[Interval::point(x)]).sign();
+        let (mut lo, mut hi) = (m0, m1);
+        let mut x = guess.clamp(m0, m1);
+        // g is strictly monotone along m on the box: its direction, from the derivative (a
+        // wrong sign here only makes the certification below fail, never pass).
+        let rising = df(x) > 0.0;
+        for _ in 0..60 {
             let fx = f(x);
             if fx == 0.0 {
-                (x0, x1) = (x, x);
                 break;
             }
-            if (fx > 0.0) == (f1 > 0.0) {
-                (x1, f1) = (x, fx);
-                if side == 1 {
-                    f0 *= 0.5;
-                }
-                side = 1;
+            if (fx > 0.0) == rising {
+                hi = x;
             } else {
-                (x0, f0) = (x, fx);
-                if side == -1 {
-                    f1 *= 0.5;
-                }
-                side = -1;
+                lo = x;
             }
+            let next = x - fx / df(x);
+            let next = if next.is_finite() && next > lo && next < hi {
+                next
+            } else {
+                0.5 * (lo + hi)
+            };
+            if (next - x).abs() <= 4.0 * f64::EPSILON * (1.0 + x.abs()) {
+                x = next;
+                break;
+            }
+            x = next;
         }
         // Certify a bracket around the estimate, widening until the enclosed signs differ.
-        let est = 0.5 * (x0 + x1);
-        let mut eps = 1e-13 * (1.0 + est.abs());
+        let (s_lo, s_hi) = if rising {
+            (Sign::Negative, Sign::Positive)
+        } else {
+            (Sign::Positive, Sign::Negative)
+        };
+        // First bracket: the enclosure's width at x over the slope, so that the first try
+        // usually succeeds.
+        let v = exact_line.eval(&[Interval::point(x)]);
+        let slope = df(x).abs();
+        let tiny = 8.0 * f64::EPSILON * (1.0 + x.abs());
+        let mut eps = tiny.max(2.0 * (v.hi() - v.lo()) / slope);
+        if !eps.is_finite() {
+            eps = tiny;
+        }
         for _ in 0..40 {
-            let (a, b) = ((est - eps).max(m0), (est + eps).min(m1));
-            let (sa, sb) = (self.sign_at(m, a, level), self.sign_at(m, b, level));
-            if sa == s0 && sb == s1 {
+            let (a, b) = ((x - eps).max(m0), (x + eps).min(m1));
+            if sign(a) == s_lo && sign(b) == s_hi {
                 return Some((a, b));
             }
             if (a, b) == (m0, m1) {
@@ -201,12 +235,18 @@ impl PatchAccuracy {
             }
             eps *= 16.0;
         }
-        Some((m0, m1))
+        None
     }
 
     /// Vertices along an arc, in (u, v), from its `from` end to its `to` end, with the largest
     /// chord bound `E` (`proofs/chord-accuracy.md`); `None` for the bound if `tol` was not met
     /// within the budget or a bound could not be computed.
+    ///
+    /// The arc's o-range is covered recursively: on each piece, bounds of φ'' and of S's
+    /// derivatives over the piece's box give the spacing h at which `E ≤ tol`; a piece that
+    /// would need many vertices is halved first (its halves get tighter bounds), the others
+    /// get uniformly spaced certified vertices, each checked against the bound with its own
+    /// certified error and slope.
     pub fn trace(
         &self,
         arc: &Arc,
@@ -244,82 +284,233 @@ impl PatchAccuracy {
         } else {
             self.phi_bounds(blo, bhi, m).map(|b| b.0)
         };
-        // Bounds of S's derivatives over the whole box: the h² factor does the shrinking.
-        let (Some(phi1), Some([l_m, s_mm, s_mo, s_oo])) = (phi1, self.surface_bounds(blo, bhi, m))
-        else {
-            return (vec![p0, p1], None);
+        let fail = |p0: [f64; 2], p1: [f64; 2]| (vec![p0, p1], None);
+        let (Some(phi1), Some(l_m)) = (phi1, self.surface_bounds(blo, bhi, m).map(|b| b[0])) else {
+            return fail(p0, p1);
         };
-        // Vertices: (o level, m value, δ = certified error of the m value at that level).
         let end_delta = |b: [[f64; 2]; 2]| half(b, m) + phi1 * half(b, o);
-        let mut verts: Vec<(f64, f64, f64)> = vec![
-            (p0[o], p0[m], end_delta(from)),
-            (p1[o], p1[m], end_delta(to)),
-        ];
         // The true arc ends anywhere in its crossing's location box, which may extend beyond
         // the end vertex's level: that end piece lies in the box grown by Φ₁ in m, within
         // L·(δ + half-extent in o) of the vertex in space, L bounding |∂S/∂m| and |∂S/∂o|.
         let Some(l_o) = self.surface_bounds(blo, bhi, o).map(|b| b[0]) else {
-            return (vec![p0, p1], None);
+            return fail(p0, p1);
         };
         let end_piece =
             |b: [[f64; 2]; 2]| l_m.max(l_o) * (end_delta(b) + half(b, o)) * (1.0 + 1e-9);
-        let mut worst: f64 = end_piece(from).max(end_piece(to));
+        let worst = end_piece(from).max(end_piece(to));
         if worst > tol {
-            return (vec![p0, p1], None);
+            return fail(p0, p1);
         }
-        let mut i = 0;
-        while i + 1 < verts.len() {
-            let (oa, ma, da) = verts[i];
-            let (ob, mb, db) = verts[i + 1];
-            let h = (ob - oa).abs();
-            let slope = if h > 0.0 {
-                (mb - ma).abs() / h
-            } else {
-                f64::INFINITY
-            };
-            // The sub-arc over [oa, ob] stays within δ + Φ₁·h of both vertices in m: bound
-            // everything on that small box, so the bound shrinks with h.
-            let reach = da.max(db) + phi1 * h;
-            let mut lo = blo;
-            let mut hi = bhi;
-            lo[o] = oa.min(ob).max(blo[o]);
-            hi[o] = oa.max(ob).min(bhi[o]);
-            lo[m] = (ma.min(mb) - reach).max(blo[m]);
-            hi[m] = (ma.max(mb) + reach).min(bhi[m]);
-            let phi2 = if on_edge {
-                Some(0.0)
-            } else {
-                self.phi_bounds(lo, hi, m).map(|b| b.1)
-            };
-            let bound = phi2.map(|p2| {
-                let e = l_m * (h * h / 8.0 * p2 + da.max(db))
-                    + h * h / 8.0 * (s_mm * slope * slope + 2.0 * s_mo * slope + s_oo);
-                e * (1.0 + 1e-9)
-            });
-            match bound {
-                Some(e) if e.is_finite() && e <= tol => {
-                    worst = worst.max(e);
-                    i += 1;
-                }
-                _ if verts.len() >= MAX_ARC_POINTS || on_edge && h == 0.0 => {
-                    return (verts.iter().map(|v| uv(m, v.1, v.0)).collect(), None);
-                }
-                _ => {
-                    let level = 0.5 * (oa + ob);
-                    let point = if on_edge {
-                        Some((ma + (mb - ma) * 0.5, ma + (mb - ma) * 0.5))
-                    } else {
-                        self.point_on_line(m, blo[m], bhi[m], level)
-                    };
-                    let Some((x, y)) = point else {
-                        return (verts.iter().map(|v| uv(m, v.1, v.0)).collect(), None);
-                    };
-                    verts.insert(i + 1, (level, 0.5 * (x + y), 0.5 * (y - x)));
-                }
-            }
-        }
-        (verts.iter().map(|v| uv(m, v.1, v.0)).collect(), Some(worst))
+        let mut tracer = Tracer {
+            acc: self,
+            m,
+            on_edge,
+            blo,
+            bhi,
+            tol,
+            verts: vec![(p0[o], p0[m], end_delta(from))],
+            worst,
+        };
+        let last = (p1[o], p1[m], end_delta(to));
+        let ok = tracer.cover(tracer.verts[0], last, phi1, None, 0);
+        tracer.verts.push(last);
+        let pts = tracer.verts.iter().map(|v| uv(m, v.1, v.0)).collect();
+        (pts, ok.then_some(tracer.worst))
     }
+}
+
+/// A vertex: (o level, m value, δ = certified error of the m value at that level).
+type Vertex = (f64, f64, f64);
+
+/// Pieces needing more vertices than this are halved before vertices are placed.
+const SPLIT_VERTICES: f64 = 48.0;
+
+/// Below this halving depth, pieces reuse their parent's bounds of S's derivatives.
+const FRESH_SURFACE_BOUNDS: u32 = 4;
+
+/// The deepest halving of an arc's o-range.
+const MAX_SPLIT_DEPTH: u32 = 40;
+
+/// The state of one arc's trace.
+struct Tracer<'a> {
+    acc: &'a PatchAccuracy,
+    m: usize,
+    on_edge: bool,
+    blo: [f64; 2],
+    bhi: [f64; 2],
+    tol: f64,
+    verts: Vec<Vertex>,
+    worst: f64,
+}
+
+impl Tracer<'_> {
+    /// The certified vertex at `level`, between vertices a and b.
+    fn vertex(&self, a: Vertex, b: Vertex, level: f64) -> Option<Vertex> {
+        let t = if b.0 != a.0 {
+            (level - a.0) / (b.0 - a.0)
+        } else {
+            0.5
+        };
+        let guess = a.1 + (b.1 - a.1) * t;
+        if self.on_edge {
+            return Some((level, guess, 0.0));
+        }
+        let (x, y) =
+            self.acc
+                .point_on_line(self.m, self.blo[self.m], self.bhi[self.m], level, guess)?;
+        Some((level, 0.5 * (x + y), 0.5 * (y - x)))
+    }
+
+    /// The bound E of the chord between two vertices, from bounds Φ₂ (of |φ''|) and sb over
+    /// a box containing the arc piece between them.
+    fn chord_bound(&self, a: Vertex, b: Vertex, phi2: f64, sb: [f64; 4]) -> f64 {
+        let [l_m, s_mm, s_mo, s_oo] = sb;
+        let h = (b.0 - a.0).abs();
+        let slope = if h > 0.0 {
+            (b.1 - a.1).abs() / h
+        } else {
+            f64::INFINITY
+        };
+        if h == 0.0 {
+            // Coincident levels: only the vertex errors count.
+            return l_m * a.2.max(b.2) * (1.0 + 1e-9);
+        }
+        let e = l_m * (h * h / 8.0 * phi2 + a.2.max(b.2))
+            + h * h / 8.0 * (s_mm * slope * slope + 2.0 * s_mo * slope + s_oo);
+        e * (1.0 + 1e-9)
+    }
+
+    /// Bounds over the box of the arc piece between vertices a and b, which stays within
+    /// δ + Φ₁·h of both in m (`phi1` bounds |φ'| on a box containing the piece): (Φ₁, Φ₂) of
+    /// the piece, and |S_m|, |S_mm|, |S_mo|, |S_oo|.
+    fn piece_bounds(
+        &self,
+        a: Vertex,
+        b: Vertex,
+        phi1: f64,
+        parent_sb: Option<[f64; 4]>,
+    ) -> Option<(f64, f64, [f64; 4])> {
+        let (m, o) = (self.m, 1 - self.m);
+        let h = (b.0 - a.0).abs();
+        let reach = a.2.max(b.2) + phi1 * h;
+        let (mut lo, mut hi) = (self.blo, self.bhi);
+        lo[o] = a.0.min(b.0).max(self.blo[o]);
+        hi[o] = a.0.max(b.0).min(self.bhi[o]);
+        lo[m] = (a.1.min(b.1) - reach).max(self.blo[m]);
+        hi[m] = (a.1.max(b.1) + reach).min(self.bhi[m]);
+        let (p1, p2) = if self.on_edge {
+            (0.0, 0.0)
+        } else {
+            self.acc.phi_bounds(lo, hi, m)?
+        };
+        // Bounds over a box containing the piece are valid for it: deep in the recursion the
+        // parent's bounds of S's derivatives are kept (they change little), Φ's are not.
+        let sb = match parent_sb {
+            Some(sb) => sb,
+            None => self.acc.surface_bounds(lo, hi, m)?,
+        };
+        Some((p1.min(phi1), p2, sb))
+    }
+
+    /// Adds the vertices strictly between a and b (a is already in `verts`); false if the
+    /// tolerance could not be certified within the budget.
+    fn cover(
+        &mut self,
+        a: Vertex,
+        b: Vertex,
+        phi1: f64,
+        parent_sb: Option<[f64; 4]>,
+        depth: u32,
+    ) -> bool {
+        if self.verts.len() >= MAX_ARC_POINTS {
+            return false;
+        }
+        let inherit = parent_sb.filter(|_| depth >= FRESH_SURFACE_BOUNDS);
+        let Some((phi1, phi2, sb)) = self.piece_bounds(a, b, phi1, inherit) else {
+            return false;
+        };
+        let h = (b.0 - a.0).abs();
+        // The spacing at which the bound meets tol, with the vertex errors expected (those of
+        // the ends; inner vertices are certified to a few ulps) and the slope bounded by Φ₁.
+        let [l_m, s_mm, s_mo, s_oo] = sb;
+        let s = phi1 + 1e-9;
+        let curv = (l_m * phi2 + s_mm * s * s + 2.0 * s_mo * s + s_oo) / 8.0;
+        let budget = 0.9 * self.tol - l_m * a.2.max(b.2).max(1e-15);
+        if budget.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) || !curv.is_finite() {
+            return false;
+        }
+        let n = if curv > 0.0 {
+            (h / (budget / curv).sqrt()).ceil().max(1.0)
+        } else {
+            1.0
+        };
+        if n > SPLIT_VERTICES && depth < MAX_SPLIT_DEPTH {
+            let Some(c) = self.vertex(a, b, 0.5 * (a.0 + b.0)) else {
+                return false;
+            };
+            if !self.cover(a, c, phi1, Some(sb), depth + 1) {
+                return false;
+            }
+            self.verts.push(c);
+            return self.cover(c, b, phi1, Some(sb), depth + 1);
+        }
+        if n as usize + self.verts.len() > MAX_ARC_POINTS {
+            return false;
+        }
+        let n = n as usize;
+        let mut prev = a;
+        for k in 1..=n {
+            let next = if k == n {
+                b
+            } else {
+                let level = a.0 + (b.0 - a.0) * (k as f64 / n as f64);
+                match self.vertex(prev, b, level) {
+                    Some(v) => v,
+                    None => return false,
+                }
+            };
+            let e = self.chord_bound(prev, next, phi2, sb);
+            if e.is_finite() && e <= self.tol {
+                self.worst = self.worst.max(e);
+            } else if depth < MAX_SPLIT_DEPTH && (next.0 - prev.0).abs() > 0.0 {
+                // The planned spacing did not suffice (a vertex less precise than expected):
+                // cover this chord on its own, with bounds on its smaller box.
+                if !self.cover(prev, next, phi1, Some(sb), depth + 1) {
+                    return false;
+                }
+            } else {
+                return false;
+            }
+            if k < n {
+                self.verts.push(next);
+            }
+            prev = next;
+        }
+        true
+    }
+}
+
+/// The univariate polynomial (in variable m) of a bivariate one on the line where the other
+/// variable equals `level`: each fibre along the other variable evaluated there.
+fn on_line<N: Number>(p: &Bernstein<N>, m: usize, level: N) -> Bernstein<N> {
+    let o = 1 - m;
+    let d = [p.degrees()[0], p.degrees()[1]];
+    let coeffs: Vec<N> = (0..=d[m])
+        .map(|i| {
+            let fibre: Vec<N> = (0..=d[o])
+                .map(|k| {
+                    let mut idx = [0; 2];
+                    idx[m] = i;
+                    idx[o] = k;
+                    p.coeff(&idx).clone()
+                })
+                .collect();
+            Bernstein::new(&[d[o]], fibre)
+                .expect("univariate")
+                .eval(std::slice::from_ref(&level))
+        })
+        .collect();
+    Bernstein::new(&[d[m]], coeffs).expect("univariate")
 }
 
 fn uv(m: usize, mv: f64, ov: f64) -> [f64; 2] {

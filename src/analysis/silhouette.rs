@@ -334,6 +334,14 @@ pub fn silhouette(
             g
         })
         .collect();
+    // With a tolerance, crossings are located finely enough that their location boxes take a
+    // small part of it (the end pieces of the accuracy bound).
+    let mut opts = opts.clone();
+    if let Some(t) = tol {
+        let rel = t / model.diagonal().max(f64::MIN_POSITIVE);
+        opts.refine_width = opts.refine_width.min((rel * 1e-3).max(1e-15));
+    }
+    let opts = &opts;
     let mut tops: Vec<CurveTopology> = solve_gs.par_iter().map(|g| solve_curve(g, opts)).collect();
     let solved: Vec<SolvedPatch> = solve_gs
         .iter()
@@ -725,6 +733,23 @@ fn chain_model(
     accuracy: Option<(&[Option<PatchAccuracy>], f64)>,
 ) -> Vec<SilhouetteCurve> {
     let draw: Vec<DrawPatch> = patches.iter().map(|p| DrawPatch::new(p)).collect();
+    // The certified traces of all arcs, in parallel (each arc is independent).
+    type Trace = Option<(Vec<[f64; 2]>, Option<f64>)>;
+    let traced: Option<Vec<Vec<Trace>>> = accuracy.map(|(acc, tol)| {
+        tops.par_iter()
+            .enumerate()
+            .map(|(p, t)| {
+                t.arcs
+                    .par_iter()
+                    .map(|a| {
+                        acc[p]
+                            .as_ref()
+                            .map(|pa| pa.trace(a, t.locations[&a.from], t.locations[&a.to], tol))
+                    })
+                    .collect()
+            })
+            .collect()
+    });
     // Arcs of all patches, with their ends mapped to joined nodes.
     let mut arcs: Vec<(Node, Node, usize)> = Vec::new();
     let mut arc_ref: Vec<(usize, usize)> = Vec::new();
@@ -801,22 +826,18 @@ fn chain_model(
                 visited.push(p);
             }
             let a = &tops[p].arcs[k];
-            let mut pts = match accuracy {
-                Some((acc, tol)) => match &acc[p] {
-                    Some(pa) => {
-                        let (pts, bound) =
-                            pa.trace(a, tops[p].locations[&a.from], tops[p].locations[&a.to], tol);
-                        match bound {
-                            Some(e) => worst = worst.map(|w: f64| w.max(e)),
-                            None => worst = None,
-                        }
-                        pts
+            let mut pts = match traced.as_ref().map(|t| &t[p][k]) {
+                Some(Some((pts, bound))) => {
+                    match bound {
+                        Some(e) => worst = worst.map(|w: f64| w.max(*e)),
+                        None => worst = None,
                     }
-                    None => {
-                        worst = None;
-                        densify(&gs_fast[p], &tops[p], a, DENSIFY_STEPS)
-                    }
-                },
+                    pts.clone()
+                }
+                Some(None) => {
+                    worst = None;
+                    densify(&gs_fast[p], &tops[p], a, DENSIFY_STEPS)
+                }
                 None => densify(&gs_fast[p], &tops[p], a, DENSIFY_STEPS),
             };
             if backwards {

@@ -235,15 +235,36 @@ impl Number for Interval {
 
     #[inline]
     fn mul(&self, rhs: &Self) -> Self {
-        // The extremes of a bilinear function on a box are at its corners.
-        let (a, b) = mul_rd_ru(self.lo, rhs.lo);
-        let (c, d) = mul_rd_ru(self.lo, rhs.hi);
-        let (e, f) = mul_rd_ru(self.hi, rhs.lo);
-        let (g, h) = mul_rd_ru(self.hi, rhs.hi);
-        Interval {
-            lo: a.min(c).min(e).min(g),
-            hi: b.max(d).max(f).max(h),
-        }
+        // The extremes of a bilinear function on a box are at its corners; the signs of the
+        // bounds say which two corners (the classic case table), except when both intervals
+        // contain zero inside.
+        let (a, b, c, d) = (self.lo, self.hi, rhs.lo, rhs.hi);
+        let rd = |x: f64, y: f64| mul_rd_ru(x, y).0;
+        let ru = |x: f64, y: f64| mul_rd_ru(x, y).1;
+        let (lo, hi) = if a >= 0.0 {
+            if c >= 0.0 {
+                (rd(a, c), ru(b, d))
+            } else if d <= 0.0 {
+                (rd(b, c), ru(a, d))
+            } else {
+                (rd(b, c), ru(b, d))
+            }
+        } else if b <= 0.0 {
+            if c >= 0.0 {
+                (rd(a, d), ru(b, c))
+            } else if d <= 0.0 {
+                (rd(b, d), ru(a, c))
+            } else {
+                (rd(a, d), ru(a, c))
+            }
+        } else if c >= 0.0 {
+            (rd(a, d), ru(b, d))
+        } else if d <= 0.0 {
+            (rd(b, c), ru(a, c))
+        } else {
+            (rd(a, d).min(rd(b, c)), ru(a, c).max(ru(b, d)))
+        };
+        Interval { lo, hi }
     }
 
     #[inline]
