@@ -2,7 +2,7 @@
 //! something can print JSON (`--format json`) whose field names are documented in README.
 
 use crate::analysis::baseline::{baseline_silhouette, BaselineMethod};
-use crate::analysis::render::silhouette_svg;
+use crate::analysis::render::{silhouette_obj, silhouette_svg};
 use crate::analysis::silhouette::{parse_vector, silhouette, Silhouette, SilhouetteReport, View};
 use crate::analysis::silhouette_certificate::{check_silhouette, SilhouetteCertificate};
 use crate::io::{read_model, read_model_bytes};
@@ -133,6 +133,7 @@ enum CurveFormat {
     Text,
     Json,
     Svg,
+    Obj,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -488,6 +489,7 @@ fn render_silhouette(
             silhouette_svg(m, view, s, &title)
         }
         CurveFormat::Text => silhouette_text(report),
+        CurveFormat::Obj => silhouette_obj(s, &report.model),
     })
 }
 

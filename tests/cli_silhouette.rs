@@ -378,3 +378,45 @@ fn certificates_are_written_and_checked_independently() {
     assert!(err.contains("junk-cert.json: line 1"), "{err}");
     assert_eq!(err.lines().count(), 1, "{err}");
 }
+
+#[test]
+fn obj_output_has_one_polyline_per_curve() {
+    let model = sphere_json();
+    let m = model.to_str().unwrap();
+    let (code, json, _) = limn(&[
+        "silhouette",
+        m,
+        "--dir",
+        "1,2,2",
+        "--tol",
+        "1e-4",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(code, Some(0));
+    let v: Value = serde_json::from_str(&json).unwrap();
+    let points = v["curves"][0]["points"].as_array().unwrap().len();
+    let (code, obj, err) = limn(&[
+        "silhouette",
+        m,
+        "--dir",
+        "1,2,2",
+        "--tol",
+        "1e-4",
+        "--format",
+        "obj",
+    ]);
+    assert_eq!(code, Some(0), "{err}");
+    let verts = obj.lines().filter(|l| l.starts_with("v ")).count();
+    let lines: Vec<&str> = obj.lines().filter(|l| l.starts_with("l ")).collect();
+    assert_eq!(verts, points);
+    assert_eq!(lines.len(), 1);
+    // Closed: the polyline returns to its first vertex.
+    let idx: Vec<usize> = lines[0][2..]
+        .split(' ')
+        .map(|s| s.parse().unwrap())
+        .collect();
+    assert_eq!(idx.len(), points + 1);
+    assert_eq!(idx[0], idx[points]);
+    assert!(obj.contains("# curve 0: closed, certified"), "{obj}");
+}

@@ -189,3 +189,61 @@ fn escape(s: &str) -> String {
         .replace('>', "&gt;")
         .replace('"', "&quot;")
 }
+
+/// The silhouette curves as an OBJ polyline file: one `v x y z` per point and one `l` line per
+/// curve (1-based indices; a closed curve repeats its first vertex at the end), with comment
+/// lines stating what each curve's certification covers.
+///
+/// # Examples
+/// ```
+/// use limn::analysis::render::silhouette_obj;
+/// use limn::analysis::silhouette::{silhouette, View};
+/// use limn::model::{Format, Model, WeldTolerance};
+/// use limn::number::Rational;
+/// use limn::solver::CurveOptions;
+/// use limn::testing::shapes;
+/// let m = Model::from_patches(Format::Json, shapes::sphere(&Rational::from(1)));
+/// let view = View::Direction([1, 2, 3].map(Rational::from));
+/// let s = silhouette(&m, &view, &CurveOptions::default(), WeldTolerance::Exact, Some(1e-3));
+/// let obj = silhouette_obj(&s, "sphere");
+/// assert_eq!(obj.lines().filter(|l| l.starts_with("l ")).count(), 1);
+/// ```
+pub fn silhouette_obj(s: &Silhouette, title: &str) -> String {
+    let mut out = format!("# limn silhouette: {title}\n");
+    if let Some(t) = s.tolerance {
+        out += &format!("# tolerance {t} (model units)\n");
+    }
+    let mut next = 1usize;
+    for (k, c) in s.curves.iter().enumerate() {
+        out += &format!(
+            "# curve {k}: {}, {}, patches {:?}{}\n",
+            if c.closed { "closed" } else { "open" },
+            if c.certified {
+                "certified"
+            } else if c.certified_topology {
+                "topology certified"
+            } else {
+                "not certified"
+            },
+            c.patches,
+            c.error_bound
+                .map_or(String::new(), |e| format!(", error bound {e}")),
+        );
+        for p in &c.points {
+            out += &format!("v {} {} {}\n", p[0], p[1], p[2]);
+        }
+        let mut line = String::from("l");
+        for i in 0..c.points.len() {
+            line += &format!(" {}", next + i);
+        }
+        if c.closed && c.points.len() > 1 {
+            line += &format!(" {next}");
+        }
+        next += c.points.len();
+        if c.points.len() > 1 {
+            out += &line;
+            out += "\n";
+        }
+    }
+    out
+}
