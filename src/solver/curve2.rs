@@ -177,17 +177,6 @@ impl CurveTopology {
     }
 }
 
-/// How a leaf box was settled.
-#[derive(Clone, Copy, Debug, PartialEq)]
-enum Leaf {
-    Excluded,
-    /// g strictly monotone along variable `m`.
-    Graph {
-        m: usize,
-    },
-    Unresolved(&'static str),
-}
-
 /// The signs of the Bernstein coefficients of `p` restricted to a box, when all are known.
 struct BoxSigns<'a> {
     p: &'a Bernstein<Rational>,
@@ -212,6 +201,9 @@ impl Question for BoxSigns<'_> {
         })
     }
 }
+
+/// Why a cell is unresolved.
+const UNRESOLVED_CELL: &str = "no direction in which g is monotone within the depth budget: a singular point of the curve, or a critical point of g very close to it";
 
 /// The depth from which undecided box signs are escalated beyond f64.
 const ESCALATION_DEPTH: u32 = 10;
@@ -420,7 +412,6 @@ pub fn solve_curve(g: &Bernstein<Rational>, opts: &CurveOptions) -> CurveTopolog
     let mut stats = Escalations::default();
 
     // Phase 1: subdivide until every box is excluded, monotone, or out of budget.
-    let mut leaves: Vec<(DyadicBox, Leaf)> = Vec::new();
     let mut cells: Vec<Cell> = Vec::new();
     let mut stack: Vec<(DyadicBox, u32, Bernstein<Interval>)> =
         vec![(DyadicBox::UNIT, 0, g.convert(Precision::F64))];
@@ -432,7 +423,6 @@ pub fn solve_curve(g: &Bernstein<Rational>, opts: &CurveOptions) -> CurveTopolog
         let ladder = (depth >= ESCALATION_DEPTH || depth >= opts.max_depth).then_some(&opts.ladder);
         let (sign, level) = strict_sign(&coeffs, g, cell, ladder, &mut stats);
         if sign.is_known() {
-            leaves.push((cell, Leaf::Excluded));
             cells.push(Cell {
                 cell,
                 kind: CellKind::Excluded { sign },
@@ -445,7 +435,6 @@ pub fn solve_curve(g: &Bernstein<Rational>, opts: &CurveOptions) -> CurveTopolog
             sign.is_known().then_some((axis, sign, level))
         });
         if let Some((m, sign, level)) = mono {
-            leaves.push((cell, Leaf::Graph { m }));
             cells.push(Cell {
                 cell,
                 kind: CellKind::Graph { m, sign },
@@ -463,7 +452,6 @@ pub fn solve_curve(g: &Bernstein<Rational>, opts: &CurveOptions) -> CurveTopolog
                 kind: CellKind::Unresolved,
                 level: None,
             });
-            leaves.push((cell, Leaf::Unresolved("no direction in which g is monotone within the depth budget: a singular point of the curve, or a critical point of g very close to it")));
             continue;
         };
         let (left, right) = coeffs.subdivide_half(0);
@@ -487,7 +475,7 @@ pub fn solve_curve(g: &Bernstein<Rational>, opts: &CurveOptions) -> CurveTopolog
         segments: BTreeMap::new(),
         stats: Escalations::default(),
     };
-    for (cell, _) in &leaves {
+    for Cell { cell, .. } in &cells {
         for fixed in 0..2 {
             let o = 1 - fixed;
             for c in [cell.lo[fixed], cell.hi[fixed]] {
@@ -501,14 +489,14 @@ pub fn solve_curve(g: &Bernstein<Rational>, opts: &CurveOptions) -> CurveTopolog
     // Phase 3: the arcs of each monotone box.
     let mut arcs: Vec<Arc> = Vec::new();
     let mut touches: Touches = Vec::new();
-    for (cell, leaf) in &leaves {
-        match *leaf {
-            Leaf::Excluded => {}
-            Leaf::Unresolved(reason) => out.unresolved.push(Unresolved {
+    for Cell { cell, kind, .. } in &cells {
+        match *kind {
+            CellKind::Excluded { .. } => {}
+            CellKind::Unresolved => out.unresolved.push(Unresolved {
                 cell: *cell,
-                reason: reason.to_string(),
+                reason: UNRESOLVED_CELL.to_string(),
             }),
-            Leaf::Graph { m } => match graph_box_arcs(&mut lines, *cell, m, &mut touches) {
+            CellKind::Graph { m, .. } => match graph_box_arcs(&mut lines, *cell, m, &mut touches) {
                 Ok(mut a) => arcs.append(&mut a),
                 Err(reason) => out.unresolved.push(Unresolved {
                     cell: *cell,
