@@ -303,13 +303,7 @@ where
                 max_depth,
                 ..CurveOptions::default()
             };
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads.unwrap_or(0))
-                .build()
-                .map_err(|e| CliError {
-                    message: format!("cannot start threads: {e}"),
-                    code: 1,
-                })?;
+            let pool = thread_pool(threads)?;
             let start = std::time::Instant::now();
             let (s, report) = match method {
                 Method::Certified => {
@@ -372,13 +366,7 @@ where
                     e.column()
                 ))
             })?;
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads.unwrap_or(0))
-                .build()
-                .map_err(|e| CliError {
-                    message: format!("cannot start threads: {e}"),
-                    code: 1,
-                })?;
+            let pool = thread_pool(threads)?;
             let start = std::time::Instant::now();
             let verdict = pool.install(|| check_silhouette(&m, &cert));
             let ms = start.elapsed().as_secs_f64() * 1e3;
@@ -458,6 +446,17 @@ where
 }
 
 /// A silhouette result as JSON, SVG or text.
+/// A worker pool of `threads` threads (all cores if `None`).
+fn thread_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, CliError> {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads.unwrap_or(0))
+        .build()
+        .map_err(|e| CliError {
+            message: format!("cannot start threads: {e}"),
+            code: 1,
+        })
+}
+
 fn render_silhouette(
     format: CurveFormat,
     report: &SilhouetteReport,

@@ -326,6 +326,15 @@ fn certificates_are_written_and_checked_independently() {
     };
     let pa = first_with("arcs");
     type Mutation = Box<dyn Fn(&mut Value)>;
+    // Drops the last entry of a patch's list.
+    let pop = |patch: usize, list: &'static str| -> Mutation {
+        Box::new(move |v: &mut Value| {
+            v["patches"][patch]["curve"][list]
+                .as_array_mut()
+                .unwrap()
+                .pop();
+        })
+    };
     let mutations: Vec<(&str, Mutation)> = vec![
         (
             "cell",
@@ -334,24 +343,8 @@ fn certificates_are_written_and_checked_independently() {
                 *s = Value::from(-s.as_i64().unwrap());
             }),
         ),
-        (
-            "cells",
-            Box::new(move |v: &mut Value| {
-                v["patches"][pa]["curve"]["cells"]
-                    .as_array_mut()
-                    .unwrap()
-                    .pop();
-            }),
-        ),
-        (
-            "arc",
-            Box::new(move |v: &mut Value| {
-                v["patches"][pa]["curve"]["arcs"]
-                    .as_array_mut()
-                    .unwrap()
-                    .pop();
-            }),
-        ),
+        ("cells", pop(pa, "cells")),
+        ("arc", pop(pa, "arcs")),
         (
             "patch",
             Box::new(|v: &mut Value| v["view"]["vector"][0] = Value::from("2")),
