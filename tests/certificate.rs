@@ -12,6 +12,7 @@ use limn::solver::checker::check_curve;
 use limn::solver::{solve_curve, CurveOptions};
 use limn::testing::{shapes, strategies};
 use proptest::prelude::*;
+use proptest::test_runner::FileFailurePersistence;
 
 fn q(a: i64, b: i64) -> Rational {
     Rational::from((a, b))
@@ -187,7 +188,13 @@ fn a_moved_crossing_is_rejected() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(limn::testing_cases(24)))]
+    #![proptest_config(ProptestConfig {
+        failure_persistence: Some(Box::new(FileFailurePersistence::Direct(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/proptest-regressions/certificate.txt"
+        )))),
+        ..ProptestConfig::with_cases(limn::testing_cases(24))
+    })]
 
     /// Random and degenerate patches (planar, cylindrical, collapsed, perturbed): the
     /// certificate of whatever the solver proved is accepted.

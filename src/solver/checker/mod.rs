@@ -193,7 +193,7 @@ pub fn check_curve(cert: &CurveCertificate) -> Result<CheckSummary, CheckFailure
     verify_roots(&g, &mut crossings)?;
     summary.crossings = crossings.len();
     separate_on_lines(&g, &mut crossings)?;
-    let derived = derive_arcs(&g, &cells, &crossings)?;
+    let derived = derive_arcs(&g, &cells, &mut crossings)?;
     compare_arcs(cert, &cells, &derived)?;
     summary.arcs = cert.arcs.len();
     check_branches(cert, &crossings, &derived)?;
@@ -459,7 +459,14 @@ fn events_on(
     let mut out = Vec::new();
     for (id, x) in crossings.iter().enumerate() {
         if let Some((lo, hi)) = x.on_line(fixed, c) {
-            if hi < *a || lo > *b {
+            // A point is in [a, b] if it lies there; an interval's root is in the open
+            // interval (lo, hi), so one that only touches [a, b] at an end is outside.
+            let outside = if lo == hi {
+                hi < *a || lo > *b
+            } else {
+                hi <= *a || lo >= *b
+            };
+            if outside {
                 continue;
             }
             if lo < *a || hi > *b {
@@ -522,7 +529,11 @@ fn o_edge_crossing(
     }
 }
 
-fn derive_arcs(g: &IPoly, cells: &[Cell], crossings: &[Crossing]) -> Result<Derived, CheckFailure> {
+fn derive_arcs(
+    g: &IPoly,
+    cells: &[Cell],
+    crossings: &mut [Crossing],
+) -> Result<Derived, CheckFailure> {
     let mut d = Derived {
         inner: BTreeMap::new(),
         edge: BTreeSet::new(),
@@ -556,15 +567,47 @@ fn derive_arcs(g: &IPoly, cells: &[Cell], crossings: &[Crossing]) -> Result<Deri
             }
             continue;
         }
-        // The events on both m-edges; g has no other root there.
-        let mut events: Vec<(Event, usize)> = Vec::new();
-        for (side, c) in edges.iter().enumerate() {
-            let evs = events_on(crossings, m, c, o0, o1, &item)?;
+        // The events on both m-edges, their isolating intervals narrowed (exact bisection)
+        // until the two edges' events are disjoint along o: roots on opposite edges are
+        // distinct (g is strictly monotone along m), so this ends unless a claim is false.
+        let mut rounds = 0;
+        let events = loop {
+            let mut events: Vec<(Event, usize)> = Vec::new();
+            for (side, c) in edges.iter().enumerate() {
+                let evs = events_on(crossings, m, c, o0, o1, &item)?;
+                events.extend(evs.into_iter().map(|e| (e, side)));
+            }
+            events.sort_by(|x, y| (&x.0.lo, &x.0.hi).cmp(&(&y.0.lo, &y.0.hi)));
+            // An isolating interval reaching a cell end leaves no gap there to sample: narrow
+            // it too (its root is inside, so it comes off the end).
+            let at_end = events
+                .iter()
+                .find(|(e, _)| e.lo < e.hi && (e.lo == *o0 || e.hi == *o1))
+                .map(|(e, _)| e.id);
+            let overlap = events
+                .windows(2)
+                .find(|w| w[1].0.lo <= w[0].0.hi)
+                .map(|w| (w[0].0.id, w[1].0.id));
+            let moved = match (at_end, overlap) {
+                (Some(x), _) => bisect(g, &mut crossings[x]),
+                (None, Some((x, y))) => bisect(g, &mut crossings[x]) | bisect(g, &mut crossings[y]),
+                (None, None) => break events,
+            };
+            rounds += 1;
+            if !moved || rounds > 400 {
+                return fail(
+                    item,
+                    "crossings on opposite edges are not separated along the cell",
+                );
+            }
+        };
+        // g has no other root on the m-edges.
+        for (side, poly) in polys.iter().enumerate() {
             let mut a = o0.clone();
             let mut root_a = false;
-            for e in &evs {
+            for (e, _) in events.iter().filter(|e| e.1 == side) {
                 let root_b = e.lo == e.hi;
-                if a < e.lo && !no_root(&polys[side], &a, &e.lo, root_a, root_b, 40) {
+                if a < e.lo && !no_root(poly, &a, &e.lo, root_a, root_b, 40) {
                     return fail(
                         &item,
                         "g has a root on an edge of the cell that is not listed",
@@ -573,20 +616,12 @@ fn derive_arcs(g: &IPoly, cells: &[Cell], crossings: &[Crossing]) -> Result<Deri
                 a = e.hi.clone();
                 root_a = root_b;
             }
-            if a < *o1 && !no_root(&polys[side], &a, o1, root_a, false, 40) {
+            if a < *o1 && !no_root(poly, &a, o1, root_a, false, 40) {
                 return fail(
                     &item,
                     "g has a root on an edge of the cell that is not listed",
                 );
             }
-            events.extend(evs.into_iter().map(|e| (e, side)));
-        }
-        events.sort_by(|x, y| (&x.0.lo, &x.0.hi).cmp(&(&y.0.lo, &y.0.hi)));
-        if events.windows(2).any(|w| w[1].0.lo <= w[0].0.hi) {
-            return fail(
-                item,
-                "crossings on opposite edges are not separated along the cell",
-            );
         }
         // Whether the curve is in the cell over each gap between events: the signs of g on the
         // two m-edges differ there (one root along m, by monotonicity).
