@@ -538,6 +538,19 @@ fn silhouette_text(r: &SilhouetteReport) -> String {
             }
         );
     }
+    for p in &r.singular_points {
+        t += &format!(
+            "singular point: patch {} at ({:.6}, {:.6}), {} arcs meet ({}), point [{:.6}, {:.6}, {:.6}]\n",
+            p.patch,
+            p.uv[0],
+            p.uv[1],
+            p.branches,
+            if p.exact { "exact" } else { "isolated" },
+            p.point[0],
+            p.point[1],
+            p.point[2]
+        );
+    }
     for u in &r.unresolved {
         t += &format!(
             "unresolved: patch {}, {} boxes in [{:.6}, {:.6}] x [{:.6}, {:.6}]: {}\n",
@@ -545,7 +558,7 @@ fn silhouette_text(r: &SilhouetteReport) -> String {
         );
     }
     for e in &r.unjoined_edges {
-        t += &format!("unjoined edge: patch {} {:?} / patch {} {:?} (no proven join: the silhouette functions are not proportional and the normals not parallel there)\n", e.0, e.1, e.2, e.3);
+        t += &format!("unjoined edge: patch {} {:?} / patch {} {:?} (no proven join: the silhouette functions are not proportional and the normals not parallel there, or the curve meets a side on which it lies at a point known only within an interval)\n", e.0, e.1, e.2, e.3);
     }
     let mut kinds: std::collections::BTreeMap<&str, usize> = std::collections::BTreeMap::new();
     for d in &r.degenerate {

@@ -118,6 +118,8 @@ pub struct SolvedPatch {
 pub struct Silhouette {
     /// The curves.
     pub curves: Vec<SilhouetteCurve>,
+    /// Where three or more arcs meet.
+    pub singular_points: Vec<SingularPoint>,
     /// Per patch: its certified topology in the parameter square.
     #[serde(skip)]
     pub patches: Vec<CurveTopology>,
@@ -145,6 +147,7 @@ impl Silhouette {
     pub fn from_curves(curves: Vec<SilhouetteCurve>) -> Silhouette {
         Silhouette {
             curves,
+            singular_points: Vec::new(),
             patches: Vec::new(),
             solved: Vec::new(),
             degenerate: Vec::new(),
@@ -331,7 +334,34 @@ pub fn silhouette(
                     }
                 }
             }
+            // A side on which g vanishes identically is part of the silhouette, exactly; but
+            // where the rest of the curve meets it, g is singular (and if g vanishes to a
+            // higher order there, g keeps one sign across it). Divide its factor out entirely:
+            // the quotient h has the same sign inside the square and a regular curve there,
+            // and the side is added back as arcs, split where h's curve meets it.
+            for edge in Edge::ALL {
+                let (h, k) = deflate_side_counted(&g, edge);
+                g = h;
+                if k > 0 {
+                    divided[i].push((edge, k));
+                }
+            }
             g
+        })
+        .collect();
+    let collapsed_side = |i: usize, e: Edge| {
+        adj.collapsed
+            .iter()
+            .any(|&(p, edge, _)| p == i && edge == e)
+    };
+    let zero_sides: Vec<Vec<Edge>> = divided
+        .iter()
+        .enumerate()
+        .map(|(i, d)| {
+            d.iter()
+                .map(|&(e, _)| e)
+                .filter(|&e| !collapsed_side(i, e))
+                .collect()
         })
         .collect();
     // With a tolerance, crossings are located finely enough that their location boxes take a
@@ -353,6 +383,12 @@ pub fn silhouette(
             topology: t.clone(),
         })
         .collect();
+
+    for (t, sides) in tops.iter_mut().zip(&zero_sides) {
+        for &edge in sides {
+            add_zero_side(t, edge);
+        }
+    }
 
     let mut degenerate = Vec::new();
     let mut unresolved = Vec::new();
@@ -442,7 +478,7 @@ pub fn silhouette(
             .map(|(i, g)| (!tops[i].arcs.is_empty()).then(|| PatchAccuracy::new(patches[i], g)))
             .collect()
     });
-    let curves = chain_model(
+    let (curves, singular_points) = chain_model(
         &tops,
         &gs_fast,
         &patches,
@@ -452,6 +488,7 @@ pub fn silhouette(
     );
     Silhouette {
         curves,
+        singular_points,
         patches: tops,
         solved,
         degenerate,
@@ -470,14 +507,19 @@ pub fn deflate_side(g: &Bernstein<Rational>, edge: Edge) -> Bernstein<Rational> 
     deflate_side_counted(g, edge).0
 }
 
-/// [`deflate_side`], with the number of factors divided out.
-pub fn deflate_side_counted(g: &Bernstein<Rational>, edge: Edge) -> (Bernstein<Rational>, usize) {
-    let (axis, at_one) = match edge {
+/// The variable and end of a side: (0, false) for u = 0, …
+fn side_axis(edge: Edge) -> (usize, bool) {
+    match edge {
         Edge::U0 => (0, false),
         Edge::U1 => (0, true),
         Edge::V0 => (1, false),
         Edge::V1 => (1, true),
-    };
+    }
+}
+
+/// [`deflate_side`], with the number of factors divided out.
+pub fn deflate_side_counted(g: &Bernstein<Rational>, edge: Edge) -> (Bernstein<Rational>, usize) {
+    let (axis, at_one) = side_axis(edge);
     let mut g = g.clone();
     let mut k = 0;
     while !g.is_zero() {
@@ -647,6 +689,57 @@ fn densify(
     pts
 }
 
+/// Adds a side on which the silhouette function vanishes identically (divided out before
+/// solving) as arcs along it, split at every crossing of the solved curve with the side, in
+/// order along it (their isolating intervals are disjoint: they are distinct roots of the
+/// solved polynomial on that line).
+fn add_zero_side(t: &mut CurveTopology, edge: Edge) {
+    let mut on_side: Vec<(Dyadic, Dyadic, CrossingId)> = Vec::new();
+    let ids = t
+        .arcs
+        .iter()
+        .flat_map(|a| [a.from, a.to])
+        .chain(t.touches.iter().copied())
+        .chain(t.branches.iter().flat_map(|b| b.crossings.iter().copied()));
+    for id in ids {
+        let Some(&(_, s0, s1)) = side_of(&id).iter().find(|s| s.0 == edge) else {
+            continue;
+        };
+        let (lo, hi) = match id {
+            CrossingId::Exact { .. } => (s0, s1),
+            CrossingId::Segment { .. } => t.intervals.get(&id).copied().unwrap_or((s0, s1)),
+        };
+        if !on_side.iter().any(|x| x.2 == id) {
+            on_side.push((lo, hi, id));
+        }
+    }
+    on_side.sort();
+    let mut nodes = vec![side_point(edge, Dyadic::ZERO)];
+    for (_, _, id) in on_side {
+        if nodes.last() != Some(&id) {
+            nodes.push(id);
+        }
+    }
+    let end = side_point(edge, Dyadic::ONE);
+    if nodes.last() != Some(&end) {
+        nodes.push(end);
+    }
+    for id in [nodes[0], end] {
+        if let CrossingId::Exact { u, v } = id {
+            let p = [u.to_f64(), v.to_f64()];
+            t.locations.insert(id, [p, p]);
+        }
+    }
+    for w in nodes.windows(2) {
+        t.arcs.push(crate::solver::curve2::Arc {
+            from: w[0],
+            to: w[1],
+            cell: crate::solver::DyadicBox::UNIT,
+            reason: "on edge",
+        });
+    }
+}
+
 /// The point of a side at parameter t, in the patch's (u, v).
 fn side_point(edge: Edge, t: Dyadic) -> CrossingId {
     let (u, v) = match edge {
@@ -675,27 +768,48 @@ fn join_zero_side(
         return false;
     }
     let reversed = a.reversed != b.reversed;
-    let param = |id: &CrossingId, edge: Edge| -> Option<Dyadic> {
-        side_of(id)
-            .into_iter()
-            .find(|s| s.0 == edge)
-            .filter(|s| s.1 == s.2)
-            .map(|s| s.1)
+    // The exact parameter along the side of a crossing on it: an exact point, or a root
+    // located exactly (a point interval). `Err` for a crossing only known in an interval.
+    let param = |t: &CurveTopology, id: &CrossingId, edge: Edge| -> Option<Result<Dyadic, ()>> {
+        let side = side_of(id).into_iter().find(|s| s.0 == edge)?;
+        if side.1 == side.2 {
+            return Some(Ok(side.1));
+        }
+        match t.intervals.get(id) {
+            Some(&(lo, hi)) if lo == hi => Some(Ok(lo)),
+            _ => Some(Err(())),
+        }
     };
     let mut ts = vec![Dyadic::ZERO, Dyadic::ONE];
-    let mut b_nodes = Vec::new();
+    // Crossings that are not the side point itself, to join to it: (patch, id, t along a).
+    let mut nodes = Vec::new();
     for (patch, edge, is_b) in [(a.patch, a.edge, false), (b.patch, b.edge, true)] {
         for arc in &tops[patch].arcs {
             for id in [arc.from, arc.to] {
-                if let Some(t) = param(&id, edge) {
-                    let ta = if is_b && reversed { t.one_minus() } else { t };
-                    ts.push(ta);
-                    if is_b {
-                        b_nodes.push((id, ta));
+                match param(&tops[patch], &id, edge) {
+                    None => {}
+                    // Where the curve meets the side at a point known only within an
+                    // interval, its order among the other patch's points is not proven: keep
+                    // the side once (patch a's arcs along it; b's are the same curve) and
+                    // leave b's crossings on it unjoined.
+                    Some(Err(())) => {
+                        tops[b.patch].arcs.retain(|arc| {
+                            !(arc.reason == "on edge" && both_on(&arc.from, &arc.to, b.edge))
+                        });
+                        return false;
+                    }
+                    Some(Ok(t)) => {
+                        let ta = if is_b && reversed { t.one_minus() } else { t };
+                        ts.push(ta);
+                        if is_b || side_point(edge, t) != id {
+                            nodes.push((patch, id, ta));
+                        }
                     }
                 }
             }
         }
+    }
+    for (patch, edge) in [(a.patch, a.edge), (b.patch, b.edge)] {
         tops[patch]
             .arcs
             .retain(|arc| !(arc.reason == "on edge" && both_on(&arc.from, &arc.to, edge)));
@@ -718,8 +832,8 @@ fn join_zero_side(
             reason: "on edge",
         });
     }
-    for (id, t) in b_nodes {
-        joins.union((b.patch, id), (a.patch, side_point(a.edge, t)));
+    for (patch, id, t) in nodes {
+        joins.union((patch, id), (a.patch, side_point(a.edge, t)));
     }
     true
 }
@@ -731,7 +845,7 @@ fn chain_model(
     joins: &mut Joins,
     open_boundary: &[(usize, Edge)],
     accuracy: Option<(&[Option<PatchAccuracy>], f64)>,
-) -> Vec<SilhouetteCurve> {
+) -> (Vec<SilhouetteCurve>, Vec<SingularPoint>) {
     let draw: Vec<DrawPatch> = patches.iter().map(|p| DrawPatch::new(p)).collect();
     // The certified traces of all arcs, in parallel (each arc is independent).
     type Trace = Option<(Vec<[f64; 2]>, Option<f64>)>;
@@ -764,17 +878,29 @@ fn chain_model(
         incident.entry(*a).or_default().push(i);
         incident.entry(*b).or_default().push(i);
     }
-    let ends_on_boundary = |n: &Node| {
-        side_of(&n.1)
-            .iter()
-            .any(|s| open_boundary.contains(&(n.0, s.0)))
-    };
+    // A joined node is on the open boundary if any of the crossings joined into it is.
+    let mut boundary_nodes: std::collections::BTreeSet<Node> = std::collections::BTreeSet::new();
+    for (p, t) in tops.iter().enumerate() {
+        for a in &t.arcs {
+            for id in [a.from, a.to] {
+                if side_of(&id)
+                    .iter()
+                    .any(|s| open_boundary.contains(&(p, s.0)))
+                {
+                    boundary_nodes.insert(joins.find((p, id)));
+                }
+            }
+        }
+    }
+    let ends_on_boundary = |n: &Node| boundary_nodes.contains(n);
     let mut used = vec![false; arcs.len()];
     let mut curves = Vec::new();
+    // Open curves start at every arc of a node of degree other than 2 (a junction starts as
+    // many curves as it has arcs); what is left are closed loops.
     let starts: Vec<(Node, bool)> = incident
         .iter()
         .filter(|(_, v)| v.len() != 2)
-        .map(|(k, _)| (*k, true))
+        .flat_map(|(k, v)| std::iter::repeat_n((*k, true), v.len()))
         .chain(incident.keys().map(|k| (*k, false)))
         .collect();
     for (start, open) in starts {
@@ -806,16 +932,18 @@ fn chain_model(
                 None => break,
             }
         }
-        let degrees_ok = nodes.iter().all(|n| incident[n].len() == 2)
-            || (!closed
-                && incident[&nodes[0]].len() == 1
-                && incident[nodes.last().expect("nonempty")].len() == 1);
+        // A walk passes only through nodes of degree 2. An open curve's end is proven if it
+        // lies on the model's open boundary (degree 1) or is a junction of three or more
+        // proven arcs (a singular point of the silhouette); a degree-1 end elsewhere is a join
+        // that could not be proven.
+        let end_ok = |n: &Node| match incident[n].len() {
+            1 => ends_on_boundary(n),
+            d => d >= 3,
+        };
         let certified = if closed {
-            degrees_ok
+            nodes.iter().all(|n| incident[n].len() == 2)
         } else {
-            degrees_ok
-                && ends_on_boundary(&nodes[0])
-                && ends_on_boundary(nodes.last().expect("nonempty"))
+            end_ok(&nodes[0]) && end_ok(nodes.last().expect("nonempty"))
         };
         let mut visited = Vec::new();
         let mut points_uv = Vec::new();
@@ -861,7 +989,43 @@ fn chain_model(
             points,
         });
     }
-    curves
+    // Junctions: nodes where three or more proven arcs meet.
+    let singular = incident
+        .iter()
+        .filter(|(_, arcs)| arcs.len() >= 3)
+        .map(|(&(p, id), arcs)| {
+            let [lo, hi] = tops[p].locations[&id];
+            let uv = [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])];
+            SingularPoint {
+                patch: p,
+                uv,
+                point: draw[p].eval(uv[0], uv[1]),
+                cell: [lo, hi],
+                exact: matches!(id, CrossingId::Exact { .. }),
+                branches: arcs.len(),
+            }
+        })
+        .collect();
+    (curves, singular)
+}
+
+/// A point where three or more arcs of the silhouette meet (the curve reaching a side on
+/// which the silhouette function vanishes, or several patches' curves through one vertex).
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct SingularPoint {
+    /// A patch it lies on.
+    pub patch: usize,
+    /// Its (u, v) there (the centre of `box`).
+    pub uv: [f64; 2],
+    /// The point in space.
+    pub point: [f64; 3],
+    /// A box in (u, v) that contains it, `[[u0, v0], [u1, v1]]` (a point if exact).
+    #[serde(rename = "box")]
+    pub cell: [[f64; 2]; 2],
+    /// Its parameters are exact dyadic numbers.
+    pub exact: bool,
+    /// The number of curve arcs that end at it.
+    pub branches: usize,
 }
 
 /// A patch in f64 for drawing: its homogeneous polynomials converted once.
@@ -950,6 +1114,8 @@ pub struct SilhouetteReport {
     pub topology_certified: bool,
     /// The curves.
     pub curves: Vec<SilhouetteCurve>,
+    /// Points where three or more arcs meet, with how many.
+    pub singular_points: Vec<SingularPoint>,
     /// Undecided regions, per patch.
     pub unresolved: Vec<UnresolvedSummary>,
     /// Shared edges across which curves could not be joined with proof.
@@ -1035,6 +1201,7 @@ impl SilhouetteReport {
             tolerance: s.tolerance,
             topology_certified,
             curves: s.curves.clone(),
+            singular_points: s.singular_points.clone(),
             unresolved: per_patch.into_values().collect(),
             unjoined_edges: s.unjoined_edges.clone(),
             degenerate: s.degenerate.clone(),
