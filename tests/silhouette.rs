@@ -15,6 +15,17 @@ fn model(patches: Vec<limn::surface::RationalPatch>) -> Model {
     Model::from_patches(Format::Json, patches)
 }
 
+/// The silhouette with default options, exact welding and no tolerance.
+fn solve(m: &Model, view: &View) -> limn::analysis::silhouette::Silhouette {
+    silhouette(
+        m,
+        view,
+        &CurveOptions::default(),
+        WeldTolerance::Exact,
+        None,
+    )
+}
+
 fn dir(x: i64, y: i64, z: i64) -> View {
     View::Direction([q(x, 1), q(y, 1), q(z, 1)])
 }
@@ -415,13 +426,7 @@ fn traced_sphere_silhouette_is_within_the_tolerance() {
 #[test]
 fn side_on_torus_has_four_exact_crossings() {
     let m = model(shapes::torus(&q(3, 1), &q(1, 1)));
-    let s = silhouette(
-        &m,
-        &dir(1, 0, 0),
-        &CurveOptions::default(),
-        WeldTolerance::Exact,
-        None,
-    );
+    let s = solve(&m, &dir(1, 0, 0));
     assert!(s.unresolved.is_empty() && s.unjoined_edges.is_empty());
     assert!(s.curves.iter().all(|c| c.certified_topology));
     let mut points: Vec<[i64; 3]> = s
@@ -452,13 +457,7 @@ fn side_on_torus_has_four_exact_crossings() {
 #[test]
 fn side_on_torus_generic_azimuth_is_honest() {
     let m = model(shapes::torus(&q(3, 1), &q(1, 1)));
-    let s = silhouette(
-        &m,
-        &dir(1, 2, 0),
-        &CurveOptions::default(),
-        WeldTolerance::Exact,
-        None,
-    );
+    let s = solve(&m, &dir(1, 2, 0));
     assert!(s.unresolved.is_empty());
     // No junction at a patch corner: the circles pass through corners with degree 2.
     for p in &s.singular_points {
@@ -482,13 +481,7 @@ fn teapot_axis_views_have_exact_junctions() {
     )
     .unwrap();
     for (view, junctions) in [(dir(1, 0, 0), 4), (dir(0, 0, 1), 2)] {
-        let s = silhouette(
-            &m,
-            &view,
-            &CurveOptions::default(),
-            WeldTolerance::Exact,
-            None,
-        );
+        let s = solve(&m, &view);
         assert!(s.unresolved.is_empty(), "{:?}", s.unresolved);
         assert!(s.unjoined_edges.is_empty());
         assert!(s.curves.iter().all(|c| c.certified_topology));
