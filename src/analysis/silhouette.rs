@@ -106,8 +106,9 @@ pub struct SilhouetteCurve {
 pub struct SolvedPatch {
     /// The polynomial solved.
     pub g: Bernstein<Rational>,
-    /// The collapsed sides whose linear factor was divided out of the silhouette function,
-    /// with how many times.
+    /// The sides whose linear factor was divided out of the silhouette function, with how many
+    /// times: collapsed sides (points), and sides on which it vanishes (part of the silhouette,
+    /// added back as arcs).
     pub divided: Vec<(Edge, usize)>,
     /// The solver's result.
     pub topology: CurveTopology,
@@ -123,9 +124,9 @@ pub struct Silhouette {
     /// Per patch: its certified topology in the parameter square.
     #[serde(skip)]
     pub patches: Vec<CurveTopology>,
-    /// Per patch: the exact polynomial solved (g with the factors of collapsed sides divided
-    /// out), the sides divided with their powers, and the solver's topology before joins
-    /// (what a certificate states).
+    /// Per patch: the exact polynomial solved (g with the factors of the sides on which it
+    /// vanishes divided out), the sides divided with their powers, and the solver's topology
+    /// before joins (what a certificate states).
     #[serde(skip)]
     pub solved: Vec<SolvedPatch>,
     /// Degenerate cases.
