@@ -3,6 +3,7 @@
 //! 1 and 2 threads; writing and independently checking a certificate.
 
 use criterion::{criterion_group, criterion_main, Criterion};
+use limn::analysis::baseline::{baseline_silhouette, BaselineMethod};
 use limn::analysis::silhouette::{silhouette, silhouette_function, View};
 use limn::analysis::silhouette_certificate::{check_silhouette, SilhouetteCertificate};
 use limn::model::{Format, Model, WeldTolerance};
@@ -120,6 +121,87 @@ fn traced(c: &mut Criterion) {
     g.finish();
 }
 
+/// The largest distance from a sampled point of polyline set `a` to polyline set `b`.
+fn one_sided(a: &[Vec<[f64; 3]>], b: &[Vec<[f64; 3]>]) -> f64 {
+    let seg = |p: [f64; 3], x: [f64; 3], y: [f64; 3]| {
+        let d = [y[0] - x[0], y[1] - x[1], y[2] - x[2]];
+        let w = [p[0] - x[0], p[1] - x[1], p[2] - x[2]];
+        let dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        let t = if dd > 0.0 {
+            ((w[0] * d[0] + w[1] * d[1] + w[2] * d[2]) / dd).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let r = [w[0] - t * d[0], w[1] - t * d[1], w[2] - t * d[2]];
+        (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt()
+    };
+    let mut worst: f64 = 0.0;
+    for line in a {
+        for w in line.windows(2) {
+            for k in 0..=8 {
+                let t = k as f64 / 8.0;
+                let p = [0, 1, 2].map(|i| w[0][i] + t * (w[1][i] - w[0][i]));
+                let near = b
+                    .iter()
+                    .flat_map(|l| l.windows(2))
+                    .map(|v| seg(p, v[0], v[1]))
+                    .fold(f64::INFINITY, f64::min);
+                worst = worst.max(near);
+            }
+        }
+    }
+    worst
+}
+
+/// The Mesh Method of paper 002 against limn at the accuracy the Mesh Method reaches: the
+/// distance of its drawing from the certified curve (traced at 1e-6 × the diagonal), and the
+/// converse, are measured once and printed; then both are timed, limn certified at the first.
+fn mesh_ratio(c: &mut Criterion) {
+    let teapot = limn::io::read_model_bytes(
+        "teapot",
+        limn::cli::EMBEDDED_TEAPOT.as_bytes(),
+        Some(Format::Bpt),
+    )
+    .unwrap();
+    let one = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    let opts = CurveOptions::default();
+    let view = dir(1, 2, 3);
+    let diag = teapot.diagonal();
+    let reference = one.install(|| {
+        silhouette(
+            &teapot,
+            &view,
+            &opts,
+            WeldTolerance::Exact,
+            Some(1e-6 * diag),
+        )
+    });
+    let reference: Vec<Vec<[f64; 3]>> = reference.curves.iter().map(|c| c.points.clone()).collect();
+    let mesh = baseline_silhouette(&teapot, &view, BaselineMethod::Mesh);
+    let mesh: Vec<Vec<[f64; 3]>> = mesh.iter().map(|c| c.points.clone()).collect();
+    // What it draws is this far from the true curve (its accuracy); the true curve is this
+    // far from what it draws (large if it misses or misconnects a piece).
+    let error = one_sided(&mesh, &reference);
+    let missed = one_sided(&reference, &mesh);
+    eprintln!(
+        "Mesh Method on the teapot from (1,2,3): its drawing is within {error:.3e} ({:.3e} x diagonal) of the certified curve; the certified curve is up to {missed:.3e} from its drawing; limn is certified at the first distance below",
+        error / diag
+    );
+    let mut g = c.benchmark_group("mesh-ratio");
+    g.bench_function("teapot-1,2,3-mesh-method", |b| {
+        b.iter(|| baseline_silhouette(&teapot, &view, BaselineMethod::Mesh))
+    });
+    g.bench_function("teapot-1,2,3-certified-at-mesh-accuracy", |b| {
+        b.iter(|| {
+            one.install(|| silhouette(&teapot, &view, &opts, WeldTolerance::Exact, Some(error)))
+        })
+    });
+    g.finish();
+}
+
 criterion_group! {
     name = silhouettes;
     config = Criterion::default().sample_size(20).measurement_time(std::time::Duration::from_secs(3));
@@ -130,4 +212,9 @@ criterion_group! {
     config = Criterion::default().sample_size(10).measurement_time(std::time::Duration::from_secs(5));
     targets = traced
 }
-criterion_main!(silhouettes, tolerances);
+criterion_group! {
+    name = ratios;
+    config = Criterion::default().sample_size(20).measurement_time(std::time::Duration::from_secs(3));
+    targets = mesh_ratio
+}
+criterion_main!(silhouettes, tolerances, ratios);
