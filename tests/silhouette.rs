@@ -450,22 +450,35 @@ fn side_on_torus_has_four_exact_crossings() {
     assert_eq!(s.curves.len(), 8);
 }
 
-/// Seen side-on from a direction whose meridian crossings are irrational, the torus's top and
-/// bottom circles are still found exactly (sides where g vanishes); where a join along them
-/// cannot be proven, the edge is reported and no curve through it claims a certified topology
-/// by a spurious junction.
+/// Seen side-on from directions whose crossings are irrational, the torus's top and bottom
+/// circles are still found exactly (sides where g vanishes), and the crossings of the
+/// meridians with them are joined across patches because the quotients are exactly
+/// proportional along the shared sides: four crossings, at 3·(−b, a)/|(a, b)| and its
+/// opposite, z = ±1, four arcs each, no spurious junction at patch corners.
 #[test]
-fn side_on_torus_generic_azimuth_is_honest() {
+fn side_on_torus_generic_azimuth_has_four_crossings() {
     let m = model(shapes::torus(&q(3, 1), &q(1, 1)));
-    let s = solve(&m, &dir(1, 2, 0));
-    assert!(s.unresolved.is_empty());
-    // No junction at a patch corner: the circles pass through corners with degree 2.
-    for p in &s.singular_points {
-        let corner = p.uv.iter().all(|&x| x == 0.0 || x == 1.0);
-        assert!(!corner, "spurious junction {p:?}");
-    }
-    if !s.unjoined_edges.is_empty() {
-        assert!(s.curves.iter().any(|c| !c.certified_topology));
+    for (a, b) in [(1i64, 2i64), (2, -3), (-5, 1)] {
+        let s = solve(&m, &dir(a, b, 0));
+        assert!(s.unresolved.is_empty() && s.unjoined_edges.is_empty());
+        assert!(s.curves.iter().all(|c| c.certified_topology));
+        assert_eq!(s.curves.len(), 8);
+        assert_eq!(s.singular_points.len(), 4);
+        let n = ((a * a + b * b) as f64).sqrt();
+        let (x, y) = (-3.0 * b as f64 / n, 3.0 * a as f64 / n);
+        for p in &s.singular_points {
+            assert_eq!(p.branches, 4, "{p:?}");
+            let d = [
+                p.point[0].abs() - x.abs(),
+                p.point[1].abs() - y.abs(),
+                p.point[2].abs() - 1.0,
+            ];
+            assert!(d.iter().all(|e| e.abs() < 1e-8), "({a},{b}): {p:?}");
+            assert!(
+                (p.point[0] * y - p.point[1] * x).abs() < 1e-8,
+                "({a},{b}): {p:?}"
+            );
+        }
     }
 }
 

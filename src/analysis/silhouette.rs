@@ -437,7 +437,7 @@ pub fn silhouette(
         }
         let (a, b) = (class[0], class[1]);
         let joined = join_side(&tops, &gs, &patches, a, b, &mut joins)
-            || join_zero_side(&mut tops, &gs, a, b, &mut joins);
+            || join_zero_side(&mut tops, &gs, &solve_gs, a, b, &mut joins);
         if !joined {
             unjoined.push((a.patch, a.edge, b.patch, b.edge));
         }
@@ -741,6 +741,70 @@ fn add_zero_side(t: &mut CurveTopology, edge: Edge) {
     }
 }
 
+/// Joins the crossings of two patches with a side on which the silhouette lies, when the
+/// solved polynomials (the silhouette functions with the side's factor divided out) are exactly
+/// proportional on it: then their roots on the side, where each patch's curve meets it, are the
+/// same points, and the i-th crossings along the side are joined. Patch `b`'s arcs along the
+/// side have been dropped already (patch `a`'s, split at the same points, stand for both).
+fn join_by_quotients(
+    tops: &[CurveTopology],
+    solved: &[Bernstein<Rational>],
+    a: SideUse,
+    b: SideUse,
+    reversed: bool,
+    joins: &mut Joins,
+) -> bool {
+    // Every root on the side must be a listed crossing: nothing undecided in either patch.
+    if !tops[a.patch].unresolved.is_empty() || !tops[b.patch].unresolved.is_empty() {
+        return false;
+    }
+    let pa = side_polynomial(&solved[a.patch], a.edge);
+    let pb = side_polynomial(&solved[b.patch], b.edge);
+    if pa.is_zero() || pb.is_zero() || !proportional(&pa, &pb, reversed) {
+        return false;
+    }
+    // Crossings inside the side (corners are joined as vertices), in order along it.
+    let inside = |t: &CurveTopology, edge: Edge| -> Vec<(Dyadic, Dyadic, CrossingId)> {
+        let mut v: Vec<(Dyadic, Dyadic, CrossingId)> = Vec::new();
+        let ids = t
+            .arcs
+            .iter()
+            .filter(|a| a.reason != "on edge")
+            .flat_map(|a| [a.from, a.to])
+            .chain(t.touches.iter().copied());
+        for id in ids {
+            let sides = side_of(&id);
+            let Some(&(_, s0, s1)) = sides.iter().find(|s| s.0 == edge) else {
+                continue;
+            };
+            if sides.len() > 1 || corner_index(&id).is_some() {
+                continue;
+            }
+            let (lo, hi) = match id {
+                CrossingId::Exact { .. } => (s0, s1),
+                CrossingId::Segment { .. } => t.intervals.get(&id).copied().unwrap_or((s0, s1)),
+            };
+            if !v.iter().any(|x| x.2 == id) {
+                v.push((lo, hi, id));
+            }
+        }
+        v.sort();
+        v
+    };
+    let ca = inside(&tops[a.patch], a.edge);
+    let mut cb = inside(&tops[b.patch], b.edge);
+    if ca.len() != cb.len() {
+        return false;
+    }
+    if reversed {
+        cb.reverse();
+    }
+    for (x, y) in ca.iter().zip(&cb) {
+        joins.union((a.patch, x.2), (b.patch, y.2));
+    }
+    true
+}
+
 /// The point of a side at parameter t, in the patch's (u, v).
 fn side_point(edge: Edge, t: Dyadic) -> CrossingId {
     let (u, v) = match edge {
@@ -759,6 +823,7 @@ fn side_point(edge: Edge, t: Dyadic) -> CrossingId {
 fn join_zero_side(
     tops: &mut [CurveTopology],
     gs: &[Bernstein<Rational>],
+    solved: &[Bernstein<Rational>],
     a: SideUse,
     b: SideUse,
     joins: &mut Joins,
@@ -797,7 +862,7 @@ fn join_zero_side(
                         tops[b.patch].arcs.retain(|arc| {
                             !(arc.reason == "on edge" && both_on(&arc.from, &arc.to, b.edge))
                         });
-                        return false;
+                        return join_by_quotients(tops, solved, a, b, reversed, joins);
                     }
                     Some(Ok(t)) => {
                         let ta = if is_b && reversed { t.one_minus() } else { t };
