@@ -283,3 +283,77 @@ mod review_regressions {
         assert!(t.branches.iter().all(|b| b.complete));
     }
 }
+
+/// Lines on which the polynomial vanishes, met by the rest of the curve: g = (u − 3/8)(v − 5/8)
+/// (u² + v² − 1/4). Both lines are divided out and added back; the circle meets u = 3/8 at
+/// the irrational v = √7/8 (an isolated junction of four arcs), the lines cross exactly at
+/// (3/8, 5/8), and v = 5/8 misses the circle. Completeness: every junction of the closed form
+/// is found; soundness: no other, and every branch is complete.
+#[test]
+fn zero_lines_are_divided_out_and_joined_where_the_curve_meets_them() {
+    use limn::solver::lines::solve_curve_lines;
+    // (u − 3/8)(v − 5/8)(u² + v² − 1/4) expanded.
+    let (a, b) = (q(3, 8), q(5, 8));
+    let ab = Rational::from(&a * &b);
+    let qf = q(-1, 4);
+    let mut terms: Vec<((usize, usize), Rational)> = Vec::new();
+    // (uv − b u − a v + ab) · (u² + v² − 1/4)
+    for ((i, j), c) in [
+        ((1, 1), q(1, 1)),
+        ((1, 0), Rational::from(-&b)),
+        ((0, 1), Rational::from(-&a)),
+        ((0, 0), ab.clone()),
+    ] {
+        for ((k, l), d) in [((2, 0), q(1, 1)), ((0, 2), q(1, 1)), ((0, 0), qf.clone())] {
+            terms.push(((i + k, j + l), Rational::from(&c * &d)));
+        }
+    }
+    let g = from_monomials(4, &terms);
+    let c = solve_curve_lines(&g, &CurveOptions::default());
+    assert!(c.topology.is_certified(), "{:?}", c.topology.unresolved);
+    assert_eq!(
+        c.lines.iter().map(|z| z.to_string()).collect::<Vec<_>>(),
+        ["u=3/8", "v=5/8"]
+    );
+    let mut degree = std::collections::BTreeMap::new();
+    for arc in &c.topology.arcs {
+        *degree.entry(arc.from).or_insert(0) += 1;
+        *degree.entry(arc.to).or_insert(0) += 1;
+    }
+    let junctions: Vec<_> = degree.iter().filter(|(_, &d)| d >= 3).collect();
+    assert_eq!(junctions.len(), 2, "{junctions:?}");
+    for (id, d) in junctions {
+        assert_eq!(*d, 4);
+        let [u, v] = c.topology.point(id);
+        let on_circle = (u - 0.375).abs() < 1e-12 && (v - 7f64.sqrt() / 8.0).abs() < 1e-8;
+        let lines_cross = *id
+            == CrossingId::Exact {
+                u: limn::solver::Dyadic::new(3, 3),
+                v: limn::solver::Dyadic::new(5, 3),
+            };
+        assert!(on_circle || lines_cross, "{id:?} at ({u}, {v})");
+    }
+    assert!(c.topology.branches.iter().all(|b| b.complete));
+    // Branches: the circle's two pieces and the two lines' pieces, each from a boundary
+    // point or junction to another: u = 3/8 in three, v = 5/8 in two, the circle in two.
+    assert_eq!(c.topology.branches.len(), 7);
+}
+
+/// A zero line at a non-dyadic position is not divided out: where the curve meets it, the
+/// solver reports the undecided box instead of guessing.
+#[test]
+fn a_zero_line_at_a_non_dyadic_position_stays_unresolved() {
+    use limn::solver::lines::solve_curve_lines;
+    // (u − 1/3)(v − u)
+    let third = q(1, 3);
+    let line = Bernstein::new(&[1, 0], vec![Rational::from(-&third), q(2, 3)]).unwrap();
+    let diag = Bernstein::new(&[1, 1], [0, 1, -1, 0].map(Rational::from).to_vec()).unwrap();
+    let c = solve_curve_lines(&(&line * &diag), &CurveOptions::default());
+    assert!(c.lines.is_empty());
+    assert!(!c.topology.is_certified());
+    let near = c.topology.unresolved.iter().any(|r| {
+        let [lo, hi] = r.cell.to_f64();
+        lo[0] <= 1.0 / 3.0 && 1.0 / 3.0 <= hi[0] && lo[1] <= 1.0 / 3.0 && 1.0 / 3.0 <= hi[1]
+    });
+    assert!(near, "{:?}", c.topology.unresolved);
+}

@@ -502,3 +502,49 @@ fn teapot_axis_views_have_exact_junctions() {
         assert!(s.singular_points.iter().all(|p| p.exact && p.branches >= 3));
     }
 }
+
+/// The teapot from horizontal directions: the rim's top circle (u = 1/2 in the rim patches,
+/// where the normal is vertical) is a line on which the silhouette function vanishes inside
+/// the patch. It is found exactly, divided out and added back; the rim's meridian silhouette
+/// crosses it in two junctions of four arcs, at the circle's height z = 2.4984375; the whole
+/// view is certified, and so is its certificate.
+#[test]
+fn teapot_horizontal_views_cross_the_rim_circle() {
+    use limn::analysis::silhouette_certificate::{check_silhouette, SilhouetteCertificate};
+    let m = limn::io::read_model_bytes(
+        "teapot",
+        include_bytes!("../fixtures/bezier/teapot.bpt"),
+        Some(Format::Bpt),
+    )
+    .unwrap();
+    for view in [dir(1, 2, 0), dir(2, -1, 0), dir(1, 1, 0), dir(-3, 1, 0)] {
+        let s = solve(&m, &view);
+        assert!(s.unresolved.is_empty(), "{view:?}: {:?}", s.unresolved);
+        assert!(s.curves.iter().all(|c| c.certified_topology), "{view:?}");
+        let rim: Vec<usize> = (0..4).collect();
+        for (i, p) in s.solved.iter().enumerate() {
+            let names: Vec<String> = p.lines.iter().map(|z| z.to_string()).collect();
+            if rim.contains(&i) {
+                // From (1, 1, 0) the meridian silhouette is the line v = 1/2 too.
+                assert!(names.contains(&"u=1/2".to_string()), "{view:?}: patch {i}");
+            }
+        }
+        assert_eq!(s.singular_points.len(), 2, "{view:?}");
+        for p in &s.singular_points {
+            assert_eq!(p.branches, 4);
+            assert_eq!(p.uv[0], 0.5);
+            assert!((p.point[2] - 2.4984375).abs() < 1e-9, "{p:?}");
+        }
+        let cert = SilhouetteCertificate::new("teapot", &view, &s);
+        assert!(check_silhouette(&m, &cert).unwrap().certified);
+        // Without the line's factor, the solved polynomial is not the silhouette function.
+        let mut bad = cert.clone();
+        let k = bad
+            .patches
+            .iter()
+            .position(|p| !p.divided.is_empty())
+            .unwrap();
+        bad.patches[k].divided.retain(|d| !d.side.contains('='));
+        assert!(check_silhouette(&m, &bad).is_err());
+    }
+}

@@ -11,7 +11,8 @@ use super::accuracy::PatchAccuracy;
 use crate::bernstein::Bernstein;
 use crate::model::{Model, PatchAdjacency, SideUse, WeldTolerance};
 use crate::number::{Number, Precision, Rational};
-use crate::solver::{solve_curve, CrossingId, CurveOptions, CurveTopology, Dyadic, Escalations};
+use crate::solver::lines::{add_line, line_point, solve_curve_lines, LinedCurve, ZeroLine};
+use crate::solver::{CrossingId, CurveOptions, CurveTopology, Dyadic, Escalations};
 use crate::surface::{Edge, RationalPatch};
 use rayon::prelude::*;
 use std::collections::BTreeMap;
@@ -67,11 +68,16 @@ pub struct Degenerate {
     /// The patch.
     pub patch: usize,
     /// "edge-on" (g ≡ 0: the whole patch is on the silhouette, e.g. a plane seen edge-on),
-    /// or "collapsed side" (a side collapsed to a point, where the normal vanishes).
+    /// "collapsed side" (a side collapsed to a point, where the normal vanishes),
+    /// "silhouette side" (g vanishes on a whole side: the side is part of the silhouette) or
+    /// "silhouette line" (g vanishes on a whole line u = c or v = c inside the patch).
     pub kind: &'static str,
-    /// The side, for "collapsed side".
+    /// The side, for "collapsed side" and "silhouette side".
     #[serde(skip_serializing_if = "Option::is_none")]
     pub side: Option<Edge>,
+    /// The line, for "silhouette line": "u=c" or "v=c" with c exact.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub line: Option<String>,
 }
 
 /// A node of the model-level curve graph: a crossing of one patch.
@@ -110,6 +116,9 @@ pub struct SolvedPatch {
     /// times: collapsed sides (points), and sides on which it vanishes (part of the silhouette,
     /// added back as arcs).
     pub divided: Vec<(Edge, usize)>,
+    /// Lines inside the square on which the silhouette function vanishes, divided out too
+    /// (added back as arcs).
+    pub lines: Vec<ZeroLine>,
     /// The solver's result.
     pub topology: CurveTopology,
 }
@@ -373,21 +382,39 @@ pub fn silhouette(
         opts.refine_width = opts.refine_width.min((rel * 1e-3).max(1e-15));
     }
     let opts = &opts;
-    let mut tops: Vec<CurveTopology> = solve_gs.par_iter().map(|g| solve_curve(g, opts)).collect();
-    let solved: Vec<SolvedPatch> = solve_gs
+    // Lines inside the square on which g vanishes (the circle of vertical normals on a surface
+    // of revolution seen from the side) are divided out too, and added back as arcs.
+    let lined: Vec<LinedCurve> = solve_gs
+        .par_iter()
+        .map(|g| solve_curve_lines(g, opts))
+        .collect();
+    let lines: Vec<Vec<ZeroLine>> = lined.iter().map(|c| c.lines.clone()).collect();
+    let solved: Vec<SolvedPatch> = lined
         .iter()
-        .zip(&tops)
         .zip(divided)
-        .map(|((g, t), divided)| SolvedPatch {
-            g: g.clone(),
+        .map(|(c, divided)| SolvedPatch {
+            g: c.quotient.clone(),
             divided,
-            topology: t.clone(),
+            lines: c.lines.clone(),
+            topology: c.solved.clone(),
         })
         .collect();
+    let mut tops: Vec<CurveTopology> = lined.into_iter().map(|c| c.topology).collect();
+    let quotients: Vec<Bernstein<Rational>> = solved.iter().map(|p| p.g.clone()).collect();
 
-    for (t, sides) in tops.iter_mut().zip(&zero_sides) {
+    for ((t, sides), lines) in tops.iter_mut().zip(&zero_sides).zip(&lines) {
+        // Where lines of the other direction cross this one.
+        let crossing = |fixed: usize| -> Vec<Dyadic> {
+            lines
+                .iter()
+                .filter(|z| z.axis != fixed)
+                .map(|z| z.at)
+                .collect()
+        };
         for &edge in sides {
-            add_zero_side(t, edge);
+            let (fixed, at_one) = side_axis(edge);
+            let c = if at_one { Dyadic::ONE } else { Dyadic::ZERO };
+            add_line(t, fixed, c, &crossing(fixed));
         }
     }
 
@@ -401,6 +428,23 @@ pub fn silhouette(
                 patch: i,
                 kind: "edge-on",
                 side: None,
+                line: None,
+            });
+        }
+        for &side in &zero_sides[i] {
+            degenerate.push(Degenerate {
+                patch: i,
+                kind: "silhouette side",
+                side: Some(side),
+                line: None,
+            });
+        }
+        for z in &lines[i] {
+            degenerate.push(Degenerate {
+                patch: i,
+                kind: "silhouette line",
+                side: None,
+                line: Some(z.to_string()),
             });
         }
         for u in &t.unresolved {
@@ -419,6 +463,7 @@ pub fn silhouette(
             patch,
             kind: "collapsed side",
             side: Some(edge),
+            line: None,
         });
         tops[patch]
             .arcs
@@ -437,7 +482,7 @@ pub fn silhouette(
         }
         let (a, b) = (class[0], class[1]);
         let joined = join_side(&tops, &gs, &patches, a, b, &mut joins)
-            || join_zero_side(&mut tops, &gs, &solve_gs, a, b, &mut joins);
+            || join_zero_side(&mut tops, &gs, &quotients, a, b, &mut joins);
         if !joined {
             unjoined.push((a.patch, a.edge, b.patch, b.edge));
         }
@@ -473,7 +518,7 @@ pub fn silhouette(
         }
     }
     let accuracy: Option<Vec<Option<PatchAccuracy>>> = tol.map(|_| {
-        solve_gs
+        quotients
             .par_iter()
             .enumerate()
             .map(|(i, g)| (!tops[i].arcs.is_empty()).then(|| PatchAccuracy::new(patches[i], g)))
@@ -690,57 +735,6 @@ fn densify(
     pts
 }
 
-/// Adds a side on which the silhouette function vanishes identically (divided out before
-/// solving) as arcs along it, split at every crossing of the solved curve with the side, in
-/// order along it (their isolating intervals are disjoint: they are distinct roots of the
-/// solved polynomial on that line).
-fn add_zero_side(t: &mut CurveTopology, edge: Edge) {
-    let mut on_side: Vec<(Dyadic, Dyadic, CrossingId)> = Vec::new();
-    let ids = t
-        .arcs
-        .iter()
-        .flat_map(|a| [a.from, a.to])
-        .chain(t.touches.iter().copied())
-        .chain(t.branches.iter().flat_map(|b| b.crossings.iter().copied()));
-    for id in ids {
-        let Some(&(_, s0, s1)) = side_of(&id).iter().find(|s| s.0 == edge) else {
-            continue;
-        };
-        let (lo, hi) = match id {
-            CrossingId::Exact { .. } => (s0, s1),
-            CrossingId::Segment { .. } => t.intervals.get(&id).copied().unwrap_or((s0, s1)),
-        };
-        if !on_side.iter().any(|x| x.2 == id) {
-            on_side.push((lo, hi, id));
-        }
-    }
-    on_side.sort();
-    let mut nodes = vec![side_point(edge, Dyadic::ZERO)];
-    for (_, _, id) in on_side {
-        if nodes.last() != Some(&id) {
-            nodes.push(id);
-        }
-    }
-    let end = side_point(edge, Dyadic::ONE);
-    if nodes.last() != Some(&end) {
-        nodes.push(end);
-    }
-    for id in [nodes[0], end] {
-        if let CrossingId::Exact { u, v } = id {
-            let p = [u.to_f64(), v.to_f64()];
-            t.locations.insert(id, [p, p]);
-        }
-    }
-    for w in nodes.windows(2) {
-        t.arcs.push(crate::solver::curve2::Arc {
-            from: w[0],
-            to: w[1],
-            cell: crate::solver::DyadicBox::UNIT,
-            reason: "on edge",
-        });
-    }
-}
-
 /// Joins the crossings of two patches with a side on which the silhouette lies, when the
 /// solved polynomials (the silhouette functions with the side's factor divided out) are exactly
 /// proportional on it: then their roots on the side, where each patch's curve meets it, are the
@@ -807,13 +801,8 @@ fn join_by_quotients(
 
 /// The point of a side at parameter t, in the patch's (u, v).
 fn side_point(edge: Edge, t: Dyadic) -> CrossingId {
-    let (u, v) = match edge {
-        Edge::V0 => (t, Dyadic::ZERO),
-        Edge::V1 => (t, Dyadic::ONE),
-        Edge::U0 => (Dyadic::ZERO, t),
-        Edge::U1 => (Dyadic::ONE, t),
-    };
-    CrossingId::Exact { u, v }
+    let (fixed, at_one) = side_axis(edge);
+    line_point(fixed, if at_one { Dyadic::ONE } else { Dyadic::ZERO }, t)
 }
 
 /// Joins a shared edge on which both silhouette functions vanish identically: the edge is

@@ -30,10 +30,12 @@ pub struct ViewClaim {
     pub vector: [String; 3],
 }
 
-/// A side factor divided out of the silhouette function.
+/// A linear factor divided out of the silhouette function: a side of the square or a line
+/// inside it.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub struct DividedSide {
-    /// "u0" (factor u), "u1" (1 − u), "v0" (v) or "v1" (1 − v).
+    /// "u0" (factor u), "u1" (1 − u), "v0" (v) or "v1" (1 − v); or a line inside the square,
+    /// "u=c" (factor u − c) or "v=c", with c an exact rational in (0, 1).
     pub side: String,
     /// How many times.
     pub power: usize,
@@ -114,6 +116,10 @@ impl SilhouetteCertificate {
                         side: side_name(e).into(),
                         power: k,
                     })
+                    .chain(p.lines.iter().map(|z| DividedSide {
+                        side: z.to_string(),
+                        power: z.power,
+                    }))
                     .collect(),
                 curve: CurveCertificate::new(&p.g, &p.topology),
             })
@@ -312,19 +318,43 @@ fn check_function(
         c: to_integers(&gq),
     };
     let mut powers = [0usize; 4];
+    // Lines inside the square: (axis, c as p/q scaled to the integer factor q t − p, power).
+    let mut lines: Vec<(usize, Z, Z, usize)> = Vec::new();
+    let mut line_powers = [0usize; 2];
     for d in &pc.divided {
         let k = match d.side.as_str() {
             "u0" => 0,
             "u1" => 1,
             "v0" => 2,
             "v1" => 3,
-            _ => return bad(&format!("unknown side {:?}", d.side)),
+            other => {
+                let (axis, c) = match other.split_once('=') {
+                    Some(("u", c)) => (0, c),
+                    Some(("v", c)) => (1, c),
+                    _ => return bad(&format!("unknown side {:?}", d.side)),
+                };
+                let c = parse_rational(c, &format!("{item}: divided line {other:?}"))?;
+                if !c.is_positive() || c >= Q::one() {
+                    return bad(&format!("divided line {other:?} is not inside the square"));
+                }
+                line_powers[axis] = line_powers[axis].saturating_add(d.power);
+                lines.push((axis, c.numer().clone(), c.denom().clone(), d.power));
+                continue;
+            }
         };
         powers[k] = powers[k].saturating_add(d.power);
     }
     let eye_deg = usize::from(eye);
-    let du = (4 * m + eye_deg * m).max(m + powers[0] + powers[1] + gm);
-    let dv = (4 * n + eye_deg * n).max(n + powers[2] + powers[3] + gn);
+    let du = (4 * m + eye_deg * m).max(
+        (m + powers[0] + gm)
+            .saturating_add(powers[1])
+            .saturating_add(line_powers[0]),
+    );
+    let dv = (4 * n + eye_deg * n).max(
+        (n + powers[2] + gn)
+            .saturating_add(powers[3])
+            .saturating_add(line_powers[1]),
+    );
     if du > 4096 || dv > 4096 {
         return bad("degrees too large");
     }
@@ -351,10 +381,15 @@ fn check_function(
                 })
                 .sum();
             let one = Z::one();
-            let factor = pow(&u, powers[0])
+            let mut factor = pow(&u, powers[0])
                 * pow(&(&one - &u), powers[1])
                 * pow(&v, powers[2])
                 * pow(&(&one - &v), powers[3]);
+            // (t − p/q) scaled by q > 0 (absorbed in λ).
+            for (axis, p, q, k) in &lines {
+                let t = if *axis == 0 { &u } else { &v };
+                factor *= pow(&(q * t - p), *k);
+            }
             let r = w0 * factor * g.eval(&u, &v);
             if reference.is_none() && !r.is_zero() {
                 reference = Some((q.clone(), r.clone()));

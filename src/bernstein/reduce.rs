@@ -98,3 +98,57 @@ impl Bernstein<Rational> {
         Some(self.with_degree(axis, n - 1, out))
     }
 }
+
+impl Bernstein<Rational> {
+    /// Divides out the linear factor `t_axis − c` exactly, if it divides the polynomial;
+    /// `None` otherwise, or at degree 0 along `axis`, or for `c` outside (0, 1) (the faces are
+    /// [`Bernstein::divide_face_factor`]).
+    ///
+    /// In degree n, `t − c = −c (1 − t) + (1 − c) t`, and the product with
+    /// `Σ_j q_j B_{n−1,j}` has coefficients `p_i = ((n − i)(−c) q_i + i (1 − c) q_{i−1}) / n`.
+    /// So `q_0 = −p_0 / c` and `q_i = (n p_i − i (1 − c) q_{i−1}) / ((n − i)(−c))`; the
+    /// candidate is accepted only if multiplying it back gives the polynomial exactly.
+    ///
+    /// # Panics
+    /// If `axis >= nvars`.
+    ///
+    /// # Examples
+    /// ```
+    /// use limn::bernstein::Bernstein;
+    /// use limn::number::Rational;
+    /// // (t − 1/2)(t − 1/4) = t² − 3t/4 + 1/8: Bernstein coefficients 1/8, −1/4, 3/8.
+    /// let q = |n: i64, d: i64| Rational::from((n, d));
+    /// let p = Bernstein::new(&[2], vec![q(1, 8), q(-1, 4), q(3, 8)]).unwrap();
+    /// let r = p.divide_linear_factor(0, &q(1, 2)).unwrap();
+    /// assert_eq!(r.coeffs(), &[q(-1, 4), q(3, 4)]); // t − 1/4
+    /// assert!(p.divide_linear_factor(0, &q(1, 3)).is_none());
+    /// ```
+    pub fn divide_linear_factor(&self, axis: usize, c: &Rational) -> Option<Self> {
+        assert!(axis < self.nvars, "axis out of range");
+        let n = self.degrees[axis];
+        if n == 0 || c.cmp0() != std::cmp::Ordering::Greater || *c >= 1 {
+            return None;
+        }
+        let stride = self.stride(axis);
+        let a0 = Rational::from(-c);
+        let a1 = Rational::from(1 - c);
+        let mut out: Vec<Rational> = vec![Rational::new(); self.coeffs.len() / (n + 1) * n];
+        for (b, block) in self.coeffs.chunks_exact((n + 1) * stride).enumerate() {
+            let base = b * n * stride;
+            for s in 0..stride {
+                let mut prev = Rational::new();
+                for i in 0..n {
+                    let num = Rational::from(&block[i * stride + s] * n as u64)
+                        - Rational::from(&a1 * &prev) * i as u64;
+                    prev = num / Rational::from(&a0 * (n - i) as u64);
+                    out[base + i * stride + s] = prev.clone();
+                }
+            }
+        }
+        let candidate = self.with_degree(axis, n - 1, out);
+        let mut lin_degrees = vec![0usize; self.nvars];
+        lin_degrees[axis] = 1;
+        let lin = Bernstein::new(&lin_degrees, vec![a0, a1]).expect("two coefficients");
+        (&candidate * &lin == *self).then_some(candidate)
+    }
+}

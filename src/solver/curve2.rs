@@ -401,6 +401,21 @@ struct Event {
 /// # Panics
 /// If `g` is not bivariate.
 pub fn solve_curve(g: &Bernstein<Rational>, opts: &CurveOptions) -> CurveTopology {
+    solve_curve_cut(g, &[], opts)
+}
+
+/// [`solve_curve`] with grid lines that must appear in the subdivision: every box that a cut
+/// `(axis, c)` crosses is split, whatever its signs, so that the line where variable `axis`
+/// equals `c` is made of box edges (its crossings are then named on it). Used for the lines
+/// on which a polynomial vanished before its factor was divided out ([`super::lines`]).
+///
+/// # Panics
+/// If `g` is not bivariate.
+pub fn solve_curve_cut(
+    g: &Bernstein<Rational>,
+    cuts: &[(usize, Dyadic)],
+    opts: &CurveOptions,
+) -> CurveTopology {
     assert_eq!(g.nvars(), 2, "bivariate");
     let mut out = CurveTopology::default();
     if g.is_zero() {
@@ -421,7 +436,14 @@ pub fn solve_curve(g: &Bernstein<Rational>, opts: &CurveOptions) -> CurveTopolog
         // large boxes, which subdivision resolves more cheaply than higher precision:
         // escalate only on small boxes, and at the depth budget.
         let ladder = (depth >= ESCALATION_DEPTH || depth >= opts.max_depth).then_some(&opts.ladder);
-        let (sign, level) = strict_sign(&coeffs, g, cell, ladder, &mut stats);
+        let cut = cuts
+            .iter()
+            .any(|&(axis, c)| cell.lo[axis] < c && c < cell.hi[axis]);
+        let (sign, level) = if cut {
+            (Sign::Unknown, None)
+        } else {
+            strict_sign(&coeffs, g, cell, ladder, &mut stats)
+        };
         if sign.is_known() {
             cells.push(Cell {
                 cell,
@@ -430,10 +452,14 @@ pub fn solve_curve(g: &Bernstein<Rational>, opts: &CurveOptions) -> CurveTopolog
             });
             continue;
         }
-        let mono = [(0, &gu), (1, &gv)].into_iter().find_map(|(axis, exact)| {
-            let (sign, level) = strict_sign(&coeffs.deriv(axis), exact, cell, ladder, &mut stats);
-            sign.is_known().then_some((axis, sign, level))
-        });
+        let mono = [(0, &gu), (1, &gv)]
+            .into_iter()
+            .filter(|_| !cut)
+            .find_map(|(axis, exact)| {
+                let (sign, level) =
+                    strict_sign(&coeffs.deriv(axis), exact, cell, ladder, &mut stats);
+                sign.is_known().then_some((axis, sign, level))
+            });
         if let Some((m, sign, level)) = mono {
             cells.push(Cell {
                 cell,
@@ -875,7 +901,7 @@ fn on_square_boundary(id: &CrossingId) -> bool {
 }
 
 /// Chains arcs into branches through shared crossings.
-fn chain(arcs: &[Arc]) -> Vec<Branch> {
+pub(crate) fn chain(arcs: &[Arc]) -> Vec<Branch> {
     let mut incident: BTreeMap<CrossingId, Vec<usize>> = BTreeMap::new();
     for (i, a) in arcs.iter().enumerate() {
         incident.entry(a.from).or_default().push(i);

@@ -5,10 +5,11 @@ pub mod certificate;
 pub mod checker;
 pub mod curve2;
 pub mod dyadic;
+pub mod lines;
 pub mod precision;
 pub mod univariate;
 
-pub use curve2::{solve_curve, CrossingId, CurveOptions, CurveTopology};
+pub use curve2::{solve_curve, solve_curve_cut, CrossingId, CurveOptions, CurveTopology};
 pub use dyadic::{Dyadic, DyadicBox};
 pub use precision::{Escalations, Ladder, Level, Question};
 pub use univariate::{isolate_roots, isolate_roots_in, refine_root, Root, Roots};
