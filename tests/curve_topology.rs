@@ -168,6 +168,13 @@ fn a_node_is_reported_unresolved_not_guessed() {
             u.cell
         );
     }
+    // The crossing is the one critical point of g there, isolated by Krawczyk's test and
+    // recognised exactly: g and its gradient vanish at (3/7, 3/7).
+    assert_eq!(t.critical.len(), 1, "{:?}", t.critical);
+    let cp = &t.critical[0];
+    assert_eq!(cp.on_curve, Some(true));
+    assert_eq!(cp.exact, Some(["3/7".to_string(), "3/7".to_string()]));
+    assert!(t.unresolved.iter().all(|u| u.reason.contains("exactly at")));
     let zero = from_monomials(1, &[]);
     assert!(solve_curve(&zero, &opts).identically_zero);
 }
@@ -356,4 +363,53 @@ fn a_zero_line_at_a_non_dyadic_position_stays_unresolved() {
         lo[0] <= 1.0 / 3.0 && 1.0 / 3.0 <= hi[0] && lo[1] <= 1.0 / 3.0 && 1.0 / 3.0 <= hi[1]
     });
     assert!(near, "{:?}", c.topology.unresolved);
+}
+
+/// Critical points in undecided boxes are isolated and classified, never guessed: an
+/// irrational node (the circle u² + v² = 1/3 crossing the diagonal at u = v = 1/√6) stays
+/// undecided with an enclosure of the true point; a critical point just off the curve
+/// (g = (u − 1/2)² + (v − 1/2)² + 10⁻²⁰, no real curve at all) is proven off it.
+#[test]
+fn critical_points_in_undecided_boxes_are_classified() {
+    let opts = CurveOptions {
+        max_depth: 16,
+        ..CurveOptions::default()
+    };
+    let circle = from_monomials(
+        2,
+        &[((2, 0), q(1, 1)), ((0, 2), q(1, 1)), ((0, 0), q(-1, 3))],
+    );
+    let diag = from_monomials(2, &[((1, 0), q(1, 1)), ((0, 1), q(-1, 1))]);
+    let t = solve_curve(&(&circle * &diag), &opts);
+    assert!(!t.is_certified());
+    let x = 1.0 / 6f64.sqrt();
+    let near: Vec<_> = t
+        .critical
+        .iter()
+        .filter(|c| {
+            (0..2).all(|k| c.enclosure[0][k] - 1e-15 <= x && x <= c.enclosure[1][k] + 1e-15)
+        })
+        .collect();
+    assert_eq!(near.len(), 1, "{:?}", t.critical);
+    assert_eq!(near[0].on_curve, None);
+    assert!(near[0].exact.is_none());
+
+    let tiny =
+        Rational::from((1, 1)) / Rational::from(rug::Integer::from(rug::Integer::u_pow_u(10, 20)));
+    let bowl = from_monomials(
+        2,
+        &[
+            ((2, 0), q(1, 1)),
+            ((1, 0), q(-1, 1)),
+            ((0, 2), q(1, 1)),
+            ((0, 1), q(-1, 1)),
+            ((0, 0), q(1, 2) + &tiny),
+        ],
+    );
+    let t = solve_curve(&bowl, &opts);
+    assert!(t.arcs.is_empty());
+    for u in &t.unresolved {
+        assert!(u.reason.contains("off the curve"), "{}", u.reason);
+    }
+    assert!(t.critical.iter().all(|c| c.on_curve == Some(false)));
 }

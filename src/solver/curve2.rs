@@ -12,6 +12,7 @@
 
 use super::dyadic::{Dyadic, DyadicBox};
 use super::precision::{Escalations, Ladder, Level, Question};
+use super::singular::{critical_points, CriticalPoint};
 use super::univariate::{isolate_roots_in, refine_root, PointSign, Root};
 use crate::bernstein::Bernstein;
 use crate::number::{Certified, Interval, Number, Precision, Rational, Sign};
@@ -158,6 +159,9 @@ pub struct CurveTopology {
     pub touches: Vec<CrossingId>,
     /// Undecided regions.
     pub unresolved: Vec<Unresolved>,
+    /// The critical points of g isolated inside the undecided regions, with what is known of
+    /// g there ([`super::singular`]).
+    pub critical: Vec<CriticalPoint>,
     /// Boxes examined.
     pub boxes: usize,
     /// Sign questions by the level that settled them.
@@ -529,6 +533,17 @@ pub fn solve_curve_cut(
                     reason,
                 }),
             },
+        }
+    }
+    // Where the subdivision could not decide, isolate the critical points of g (the
+    // candidates for singular points of the curve) and say what they are.
+    if !out.unresolved.is_empty() {
+        let boxes: Vec<DyadicBox> = out.unresolved.iter().map(|u| u.cell).collect();
+        out.critical = critical_points(g, &boxes);
+        for u in &mut out.unresolved {
+            if let Some(cp) = out.critical.iter().find(|cp| cp.in_box(&u.cell)) {
+                u.reason = cp.reason();
+            }
         }
     }
     // Arcs along an edge are found from both sides: keep one.

@@ -7,6 +7,8 @@ pub mod curve2;
 pub mod dyadic;
 pub mod lines;
 pub mod precision;
+pub mod singular;
+pub mod system;
 pub mod univariate;
 
 pub use curve2::{solve_curve, solve_curve_cut, CrossingId, CurveOptions, CurveTopology};

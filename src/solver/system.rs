@@ -1,0 +1,485 @@
+//! Certified isolation of the roots of square polynomial systems on a box: subdivision with
+//! exclusion, and Krawczyk's uniqueness test (`proofs/krawczyk.md`).
+//!
+//! For `f: R^n → R^n` with Bernstein coefficients on a box `X`, the Krawczyk operator
+//! `K(X) = y − C f(y) + (I − C J(X)) (X − y)` (y the centre, J(X) an interval enclosure of the
+//! Jacobian over X, C any real matrix, here an approximate inverse of the Jacobian's midpoint)
+//! satisfies: if `K(X)` lies in the interior of X, then f has exactly one zero in X, and it lies
+//! in `K(X)`. The test is run on each box grown by an eighth of its width on every side, so a
+//! root on a box face is still proven from one of its neighbours; a root found twice is
+//! recognised because each one's enclosure lies inside the other's uniqueness region.
+//!
+//! Extra polynomials (`filters`) only exclude boxes: for an overdetermined system such as the
+//! singular points of a curve (`g = ∂g/∂u = ∂g/∂v = 0`), the square part is
+//! `(∂g/∂u, ∂g/∂v)` and `g` filters; whether `g` vanishes at an isolated root is for the
+//! caller to decide. Written for any number of variables (up to the Bernstein limit), so
+//! later systems (bitangents, flecnodal points) use the same code.
+
+use super::dyadic::Dyadic;
+use crate::bernstein::Bernstein;
+use crate::number::{Interval, Number, Precision, Rational};
+
+/// Budgets of the system solver.
+#[derive(Clone, Debug)]
+pub struct SystemOptions {
+    /// The deepest subdivision (box sides 2^-depth of the domain's).
+    pub max_depth: u32,
+    /// The most boxes examined.
+    pub max_boxes: usize,
+    /// Isolated roots are refined (Krawczyk iteration) to enclosures of at most this width.
+    pub refine_width: f64,
+}
+
+impl Default for SystemOptions {
+    fn default() -> Self {
+        SystemOptions {
+            max_depth: 30,
+            max_boxes: 20_000,
+            refine_width: 1e-12,
+        }
+    }
+}
+
+/// An axis-aligned box with exact dyadic corners: `(lo, hi)` per variable.
+pub type DyadicBoxN = Vec<(Dyadic, Dyadic)>;
+
+/// A root proven unique by Krawczyk's test.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct IsolatedRoot {
+    /// The region where it is the only root of the square system (the tested box).
+    pub unique_in: Vec<[f64; 2]>,
+    /// A box that contains it (the last Krawczyk image), `[lo, hi]` per variable.
+    pub enclosure: Vec<[f64; 2]>,
+    /// The enclosure lies inside the domain (false: it straddles the domain's boundary, and
+    /// the root may lie just outside).
+    pub inside: bool,
+}
+
+/// What the system solver found.
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
+pub struct SystemRoots {
+    /// The isolated roots (each once).
+    pub roots: Vec<IsolatedRoot>,
+    /// Boxes where neither exclusion nor the uniqueness test succeeded within the budget
+    /// (a multiple root, a root of the square system on a filter's zero set that is not
+    /// isolated, or clustered roots).
+    pub unresolved: Vec<Vec<[f64; 2]>>,
+    /// Boxes examined.
+    pub boxes: usize,
+}
+
+/// Whether every coefficient has one strict sign.
+fn excludes(p: &Bernstein<Interval>) -> bool {
+    let c = p.coeffs();
+    c.iter().all(|x| x.lo() > 0.0) || c.iter().all(|x| x.hi() < 0.0)
+}
+
+/// The hull of a polynomial's coefficients: an enclosure of its range on the box.
+fn range(p: &Bernstein<Interval>) -> Interval {
+    let c = p.coeffs();
+    c[1..].iter().fold(c[0], |a, b| a.hull(b))
+}
+
+/// The inverse of a small dense matrix (Gauss-Jordan with partial pivoting), or `None` if it
+/// is numerically singular. Any matrix serves as C in Krawczyk's operator: this only affects
+/// whether the test succeeds, never its soundness.
+fn inverse(m: &[Vec<f64>]) -> Option<Vec<Vec<f64>>> {
+    let n = m.len();
+    let mut a: Vec<Vec<f64>> = m
+        .iter()
+        .enumerate()
+        .map(|(i, row)| {
+            let mut r = row.clone();
+            r.extend((0..n).map(|j| if i == j { 1.0 } else { 0.0 }));
+            r
+        })
+        .collect();
+    for col in 0..n {
+        let piv = (col..n).max_by(|&i, &j| a[i][col].abs().total_cmp(&a[j][col].abs()))?;
+        // Columns may differ in scale by many orders (boxes of very different widths), so no
+        // relative threshold: only an exact zero pivot fails (and non-finite results below).
+        if a[piv][col] == 0.0 || !a[piv][col].is_finite() {
+            return None;
+        }
+        a.swap(col, piv);
+        let p = a[col][col];
+        for x in a[col].iter_mut() {
+            *x /= p;
+        }
+        for r in 0..n {
+            if r != col {
+                let f = a[r][col];
+                if f != 0.0 {
+                    let pivot_row = a[col].clone();
+                    for (x, v) in a[r].iter_mut().zip(&pivot_row) {
+                        *x -= f * v;
+                    }
+                }
+            }
+        }
+    }
+    let inv: Vec<Vec<f64>> = a.into_iter().map(|r| r[n..].to_vec()).collect();
+    inv.iter().flatten().all(|x| x.is_finite()).then_some(inv)
+}
+
+/// Krawczyk's operator on the unit box of the polynomials' own coordinates: `Some(K)` (in
+/// those coordinates) if `K ⊂ (0, 1)^n` strictly, which proves exactly one zero in the box,
+/// inside K.
+pub fn krawczyk(square: &[Bernstein<Interval>]) -> Option<Vec<Interval>> {
+    let n = square.len();
+    let half = Interval::point(0.5);
+    let y = vec![half; n];
+    let fy: Vec<Interval> = square.iter().map(|f| f.eval(&y)).collect();
+    let jac: Vec<Vec<Interval>> = square
+        .iter()
+        .map(|f| (0..n).map(|j| range(&f.deriv(j))).collect())
+        .collect();
+    let mid: Vec<Vec<f64>> = jac
+        .iter()
+        .map(|r| r.iter().map(|x| 0.5 * (x.lo() + x.hi())).collect())
+        .collect();
+    let c = inverse(&mid)?;
+    let dx = Interval::new(-0.5, 0.5);
+    let mut k = Vec::with_capacity(n);
+    for (i, ci) in c.iter().enumerate() {
+        let mut acc = half;
+        for (cij, fyj) in ci.iter().zip(&fy) {
+            acc = acc.sub(&Interval::point(*cij).mul(fyj));
+        }
+        for j in 0..n {
+            // (I − C J)_ij
+            let mut m = Interval::point(if i == j { 1.0 } else { 0.0 });
+            for (cil, jl) in ci.iter().zip(&jac) {
+                m = m.sub(&Interval::point(*cil).mul(&jl[j]));
+            }
+            acc = acc.add(&m.mul(&dx));
+        }
+        if !(acc.lo() > 0.0 && acc.hi() < 1.0) {
+            return None;
+        }
+        k.push(acc);
+    }
+    Some(k)
+}
+
+/// The polynomials restricted to a box given in their current coordinates by f64 bounds
+/// (exact dyadics here), as interval enclosures.
+fn restrict_all(ps: &[Bernstein<Interval>], lo: &[f64], hi: &[f64]) -> Vec<Bernstein<Interval>> {
+    let lo: Vec<Interval> = lo.iter().map(|&x| Interval::point(x)).collect();
+    let hi: Vec<Interval> = hi.iter().map(|&x| Interval::point(x)).collect();
+    ps.iter().map(|p| p.restrict_box(&lo, &hi)).collect()
+}
+
+/// Krawczyk's test on the box `[lo, hi]` of the domain (global coordinates), on polynomials
+/// given on the whole domain: the root's enclosure in global coordinates.
+fn test_box(domain_polys: &[Bernstein<Interval>], lo: &[f64], hi: &[f64]) -> Option<Vec<[f64; 2]>> {
+    to_global(&krawczyk(&restrict_all(domain_polys, lo, hi))?, lo, hi)
+}
+
+/// The same, restricting the exact polynomials exactly before enclosing them (tighter on
+/// small boxes: used to refine).
+fn test_box_exact(exact: &[Bernstein<Rational>], lo: &[f64], hi: &[f64]) -> Option<Vec<[f64; 2]>> {
+    let q =
+        |x: &[f64]| -> Option<Vec<Rational>> { x.iter().map(|&v| Rational::from_f64(v)).collect() };
+    let (lq, hq) = (q(lo)?, q(hi)?);
+    let local: Vec<Bernstein<Interval>> = exact
+        .iter()
+        .map(|p| p.restrict_box_rational(&lq, &hq).convert(Precision::F64))
+        .collect();
+    to_global(&krawczyk(&local)?, lo, hi)
+}
+
+/// Local Krawczyk image to global coordinates, rounded outward.
+fn to_global(k: &[Interval], lo: &[f64], hi: &[f64]) -> Option<Vec<[f64; 2]>> {
+    Some(
+        k.iter()
+            .enumerate()
+            .map(|(i, ki)| {
+                let w = Interval::point(hi[i]).sub(&Interval::point(lo[i]));
+                let l = Interval::point(lo[i]);
+                [
+                    l.add(&w.mul(&Interval::point(ki.lo()))).lo(),
+                    l.add(&w.mul(&Interval::point(ki.hi()))).hi(),
+                ]
+            })
+            .collect(),
+    )
+}
+
+/// Narrows an isolated root's enclosure by Krawczyk iteration (each image is again a proven
+/// enclosure of the same root: it lies in the previous box, where the root is unique).
+fn refine(
+    exact: &[Bernstein<Rational>],
+    unique_in: &[[f64; 2]],
+    enc: Vec<[f64; 2]>,
+    width: f64,
+) -> Vec<[f64; 2]> {
+    if let Some(tight) = newton_then_verify(exact, unique_in, &enc, width) {
+        return tight;
+    }
+    iterate(exact, enc, width)
+}
+
+/// Newton's method in f64 from the enclosure's centre, then Krawczyk's test on small boxes
+/// around the result that lie inside `unique_in`: a success proves the root there, and it is
+/// the same root (the only one in `unique_in`).
+fn newton_then_verify(
+    exact: &[Bernstein<Rational>],
+    unique_in: &[[f64; 2]],
+    enc: &[[f64; 2]],
+    width: f64,
+) -> Option<Vec<[f64; 2]>> {
+    let n = exact.len();
+    let f: Vec<Bernstein<f64>> = exact.iter().map(|p| p.convert(Precision::F64)).collect();
+    let df: Vec<Vec<Bernstein<f64>>> = f
+        .iter()
+        .map(|p| (0..n).map(|j| p.deriv(j)).collect())
+        .collect();
+    let mut x: Vec<f64> = enc.iter().map(|b| 0.5 * (b[0] + b[1])).collect();
+    for _ in 0..40 {
+        let fx: Vec<f64> = f.iter().map(|p| p.eval(&x)).collect();
+        let j: Vec<Vec<f64>> = df
+            .iter()
+            .map(|r| r.iter().map(|p| p.eval(&x)).collect())
+            .collect();
+        let inv = inverse(&j)?;
+        let step: Vec<f64> = (0..n)
+            .map(|i| (0..n).map(|k| inv[i][k] * fx[k]).sum())
+            .collect();
+        for (xi, si) in x.iter_mut().zip(&step) {
+            *xi -= si;
+        }
+        if !x.iter().all(|v| v.is_finite()) {
+            return None;
+        }
+        if step
+            .iter()
+            .all(|s| s.abs() <= 1e-17 * 1f64.max(x.iter().fold(0.0, |a, v| a.max(v.abs()))))
+        {
+            break;
+        }
+    }
+    let mut r = 1e-15;
+    while r <= width.max(1e-15) * 0.5 {
+        let b: Vec<[f64; 2]> = x
+            .iter()
+            .map(|&v| [v - r * v.abs().max(1.0), v + r * v.abs().max(1.0)])
+            .collect();
+        if within(&b, unique_in) {
+            let (lo, hi): (Vec<f64>, Vec<f64>) = b.iter().map(|x| (x[0], x[1])).unzip();
+            if let Some(k) = test_box_exact(exact, &lo, &hi) {
+                return Some(k);
+            }
+        }
+        r *= 8.0;
+    }
+    None
+}
+
+/// Krawczyk iteration, with bisection where it stalls.
+fn iterate(exact: &[Bernstein<Rational>], mut enc: Vec<[f64; 2]>, width: f64) -> Vec<[f64; 2]> {
+    for _ in 0..60 {
+        if enc.iter().all(|b| b[1] - b[0] <= width) {
+            break;
+        }
+        // ε-inflation: the box holds the root (it contains the enclosure), so a unique root in
+        // it is that root; the margin keeps the test from failing on rounding alone once a
+        // coordinate is already at machine precision.
+        let (lo, hi): (Vec<f64>, Vec<f64>) = enc
+            .iter()
+            .map(|b| {
+                let m = 0.05 * (b[1] - b[0]) + 1e-15 * b[0].abs().max(b[1].abs()).max(1e-3);
+                (b[0] - m, b[1] + m)
+            })
+            .unzip();
+        let widest = |b: &[[f64; 2]]| b.iter().map(|x| x[1] - x[0]).fold(0.0, f64::max);
+        let next = test_box_exact(exact, &lo, &hi).map(|next| {
+            next.iter()
+                .zip(&enc)
+                .map(|(n, e)| [n[0].max(e[0]), n[1].min(e[1])])
+                .collect::<Vec<_>>()
+        });
+        match next {
+            Some(next) if widest(&next) < 0.9 * widest(&enc) => enc = next,
+            // Krawczyk stalls while the box is large for the Jacobian's variation: bisect the
+            // widest side; a half where some equation has a strict sign holds no root, so the
+            // root is in the other one.
+            other => {
+                if let Some(next) = other {
+                    enc = next;
+                }
+                let axis = (0..enc.len())
+                    .max_by(|&i, &j| (enc[i][1] - enc[i][0]).total_cmp(&(enc[j][1] - enc[j][0])))
+                    .expect("one variable at least");
+                let mid = 0.5 * (enc[axis][0] + enc[axis][1]);
+                let half = |k: usize| {
+                    let mut b = enc.clone();
+                    b[axis][k] = mid;
+                    b
+                };
+                let (left, right) = (half(1), half(0));
+                if excluded_exact(exact, &left) {
+                    enc = right;
+                } else if excluded_exact(exact, &right) {
+                    enc = left;
+                } else {
+                    break;
+                }
+            }
+        }
+    }
+    enc
+}
+
+/// Whether some polynomial has a strict sign on the box (exact restriction, then enclosed).
+fn excluded_exact(exact: &[Bernstein<Rational>], b: &[[f64; 2]]) -> bool {
+    let q = |k: usize| -> Option<Vec<Rational>> {
+        b.iter().map(|x| Rational::from_f64(x[k])).collect()
+    };
+    let (Some(lo), Some(hi)) = (q(0), q(1)) else {
+        return false;
+    };
+    exact
+        .iter()
+        .any(|p| excludes(&p.restrict_box_rational(&lo, &hi).convert(Precision::F64)))
+}
+
+fn within(inner: &[[f64; 2]], outer: &[[f64; 2]]) -> bool {
+    inner
+        .iter()
+        .zip(outer)
+        .all(|(a, b)| b[0] <= a[0] && a[1] <= b[1])
+}
+
+/// Isolates the roots of the square system `square` (n polynomials in n variables) on the
+/// box `domain` of their parameter space, discarding boxes where a polynomial of `square` or
+/// of `filters` has a strict sign.
+///
+/// # Panics
+/// If the polynomials do not all have `square.len()` variables, or `domain` has another
+/// dimension.
+///
+/// # Examples
+/// ```
+/// use limn::bernstein::Bernstein;
+/// use limn::number::Rational;
+/// use limn::solver::system::{solve_system, SystemOptions};
+/// use limn::solver::Dyadic;
+/// // u − 1/3 and v − u²... as Bernstein: f = u − 1/3 (degree (1, 0)), h = v − u (degree (1, 1)).
+/// let f = Bernstein::new(&[1, 0], vec![Rational::from((-1, 3)), Rational::from((2, 3))]).unwrap();
+/// let h = Bernstein::new(&[1, 1], [0, 1, -1, 0].map(Rational::from).to_vec()).unwrap();
+/// let unit = vec![(Dyadic::ZERO, Dyadic::ONE); 2];
+/// let r = solve_system(&[f, h], &[], &unit, &SystemOptions::default());
+/// assert_eq!(r.roots.len(), 1);
+/// let e = &r.roots[0].enclosure;
+/// assert!(e[0][0] <= 1.0 / 3.0 && 1.0 / 3.0 <= e[0][1] && e[1][0] <= 1.0 / 3.0 && 1.0 / 3.0 <= e[1][1]);
+/// ```
+pub fn solve_system(
+    square: &[Bernstein<Rational>],
+    filters: &[Bernstein<Rational>],
+    domain: &DyadicBoxN,
+    opts: &SystemOptions,
+) -> SystemRoots {
+    let n = square.len();
+    assert!(
+        n >= 1 && domain.len() == n,
+        "a square system on a box of its dimension"
+    );
+    assert!(
+        square.iter().chain(filters).all(|p| p.nvars() == n),
+        "every polynomial has n variables"
+    );
+    let mut out = SystemRoots::default();
+    let whole: Vec<Bernstein<Interval>> =
+        square.iter().map(|p| p.convert(Precision::F64)).collect();
+    let whole_filters: Vec<Bernstein<Interval>> =
+        filters.iter().map(|p| p.convert(Precision::F64)).collect();
+    let dlo: Vec<f64> = domain.iter().map(|d| d.0.to_f64()).collect();
+    let dhi: Vec<f64> = domain.iter().map(|d| d.1.to_f64()).collect();
+    let start: Vec<Bernstein<Interval>> = restrict_all(&whole, &dlo, &dhi)
+        .into_iter()
+        .chain(restrict_all(&whole_filters, &dlo, &dhi))
+        .collect();
+    let mut stack: Vec<(DyadicBoxN, u32, Vec<Bernstein<Interval>>)> =
+        vec![(domain.clone(), 0, start)];
+    while let Some((bx, depth, polys)) = stack.pop() {
+        out.boxes += 1;
+        if polys.iter().any(excludes) {
+            continue;
+        }
+        let lo: Vec<f64> = bx.iter().map(|d| d.0.to_f64()).collect();
+        let hi: Vec<f64> = bx.iter().map(|d| d.1.to_f64()).collect();
+        // The box grown by an eighth of its width on each side (exact in f64: dyadic).
+        let glo: Vec<f64> = lo.iter().zip(&hi).map(|(a, b)| a - (b - a) / 8.0).collect();
+        let ghi: Vec<f64> = lo.iter().zip(&hi).map(|(a, b)| b + (b - a) / 8.0).collect();
+        if let Some(enc) = test_box(&whole, &glo, &ghi) {
+            let unique_in: Vec<[f64; 2]> = glo.iter().zip(&ghi).map(|(a, b)| [*a, *b]).collect();
+            let outside = enc
+                .iter()
+                .enumerate()
+                .any(|(i, e)| e[1] < dlo[i] || e[0] > dhi[i]);
+            if !outside {
+                let seen = out
+                    .roots
+                    .iter()
+                    .any(|r| within(&enc, &r.unique_in) || within(&r.enclosure, &unique_in));
+                if !seen {
+                    let enc = refine(square, &unique_in, enc, opts.refine_width);
+                    let inside = enc
+                        .iter()
+                        .enumerate()
+                        .all(|(i, e)| dlo[i] <= e[0] && e[1] <= dhi[i]);
+                    out.roots.push(IsolatedRoot {
+                        unique_in,
+                        enclosure: enc,
+                        inside,
+                    });
+                }
+            }
+            continue;
+        }
+        if depth >= opts.max_depth || out.boxes + stack.len() >= opts.max_boxes {
+            out.unresolved
+                .push(lo.iter().zip(&hi).map(|(a, b)| [*a, *b]).collect());
+            continue;
+        }
+        // Split every axis at its midpoint: 2^n children.
+        let mut children: Vec<(DyadicBoxN, Vec<Bernstein<Interval>>)> = vec![(bx.clone(), polys)];
+        for axis in 0..n {
+            let mut next = Vec::with_capacity(children.len() * 2);
+            for (b, ps) in children {
+                let Some(mid) = b[axis].0.midpoint(b[axis].1) else {
+                    out.unresolved
+                        .push(lo.iter().zip(&hi).map(|(a, b)| [*a, *b]).collect());
+                    next.clear();
+                    break;
+                };
+                let (mut l, mut r) = (b.clone(), b);
+                l[axis].1 = mid;
+                r[axis].0 = mid;
+                let (pl, pr): (Vec<_>, Vec<_>) = ps.iter().map(|p| p.subdivide_half(axis)).unzip();
+                next.push((l, pl));
+                next.push((r, pr));
+            }
+            children = next;
+        }
+        for (b, ps) in children.into_iter().rev() {
+            stack.push((b, depth + 1, ps));
+        }
+    }
+    out
+}
+
+/// The simplest rational (smallest denominator, then numerator) in `[lo, hi]`, for
+/// `0 ≤ lo ≤ hi`, by continued fractions.
+pub fn simplest_rational(lo: &Rational, hi: &Rational) -> Rational {
+    let n = Rational::from(lo.ceil_ref());
+    if n <= *hi {
+        return n;
+    }
+    let fl = Rational::from(lo.floor_ref());
+    // lo and hi lie strictly between fl and fl + 1.
+    let a = Rational::from(hi - &fl).recip();
+    let b = Rational::from(lo - &fl).recip();
+    fl + simplest_rational(&a, &b).recip()
+}
