@@ -2,6 +2,7 @@
 //! something can print JSON (`--format json`) whose field names are documented in README.
 
 use crate::analysis::baseline::{baseline_silhouette, BaselineMethod};
+use crate::analysis::parabolic::parabolic;
 use crate::analysis::render::{silhouette_obj, silhouette_svg};
 use crate::analysis::silhouette::{parse_vector, silhouette, Silhouette, SilhouetteReport, View};
 use crate::analysis::silhouette_certificate::{check_silhouette, SilhouetteCertificate};
@@ -99,6 +100,43 @@ enum Command {
         #[arg(long)]
         certificate: Option<PathBuf>,
     },
+    /// Curves on a model that do not depend on a view, with certified topology (and accuracy
+    /// with --tol): `parabolic` (Gaussian curvature zero).
+    Curves {
+        /// The model file.
+        model: PathBuf,
+        /// The curve family.
+        #[arg(long, value_enum)]
+        kind: CurveKind,
+        /// Output format.
+        #[arg(long, value_enum, default_value_t = CurveFormat::Text)]
+        format: CurveFormat,
+        /// The direction along which the SVG drawing is projected, x,y,z.
+        #[arg(long, allow_hyphen_values = true, default_value = DEMO_DIRECTION)]
+        dir: String,
+        /// Write to this file instead of standard output (refused if it exists, unless --force).
+        #[arg(short = 'o', long = "output")]
+        output: Option<PathBuf>,
+        /// Overwrite the output file if it exists.
+        #[arg(long)]
+        force: bool,
+        /// Worker threads (default: all cores).
+        #[arg(long)]
+        threads: Option<usize>,
+        /// How patch boundaries are matched: "exact" or a distance (default as for `info`).
+        #[arg(long, allow_hyphen_values = true)]
+        weld: Option<String>,
+        /// The deepest subdivision (the box side is 2^-depth), 1..=40.
+        #[arg(long, default_value_t = 24)]
+        max_depth: u32,
+        /// Certify the drawing to this distance, relative to the bounding-box diagonal
+        /// (absolute with --abs-tol).
+        #[arg(long, allow_hyphen_values = true)]
+        tol: Option<f64>,
+        /// Read --tol as an absolute distance in model units.
+        #[arg(long)]
+        abs_tol: bool,
+    },
     /// Re-verifies a silhouette certificate against its model, independently of the solver, in
     /// exact arithmetic. Exit 0: valid; 1: invalid (the first failing item is named).
     Check {
@@ -126,6 +164,11 @@ enum Method {
     Certified,
     Mesh,
     SrfNode,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum CurveKind {
+    Parabolic,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -212,12 +255,6 @@ where
             }
         }
     })?;
-    let w = |r: std::io::Result<()>| {
-        r.map_err(|e| CliError {
-            message: format!("cannot write the output: {e}"),
-            code: 1,
-        })
-    };
     match cli.command {
         Command::Info {
             model,
@@ -248,13 +285,7 @@ where
             abs_tol,
             certificate,
         } => {
-            if let Some(t) = tol {
-                if !(t.is_finite() && t > 0.0) {
-                    return Err(CliError::input(format!(
-                        "--tol: expected a positive number, found {t}"
-                    )));
-                }
-            }
+            check_run_arguments(tol, max_depth, threads)?;
             let view = match (dir, eye) {
                 (Some(d), _) => View::Direction(
                     parse_vector(&d).map_err(|e| CliError::input(format!("--dir: {e}")))?,
@@ -269,22 +300,7 @@ where
                     "--dir: the view direction must not be the zero vector",
                 ));
             }
-            if !(1..=40).contains(&max_depth) {
-                return Err(CliError::input(format!(
-                    "--max-depth: expected 1..=40, found {max_depth}"
-                )));
-            }
-            if threads == Some(0) {
-                return Err(CliError::input("--threads: expected at least 1"));
-            }
-            for path in output.iter().chain(&certificate) {
-                if path.exists() && !force {
-                    return Err(CliError::input(format!(
-                        "{}: exists; not overwritten (use --force)",
-                        path.display()
-                    )));
-                }
-            }
+            refuse_overwrite(output.iter().chain(&certificate), force)?;
             if certificate.is_some() && method != Method::Certified {
                 return Err(CliError::input(
                     "--certificate: only the certified method proves anything",
@@ -337,13 +353,61 @@ where
                 })?;
             }
             let text = render_silhouette(format, &report, &m, &view, &s)?;
-            match output {
-                Some(path) => std::fs::write(&path, text).map_err(|e| CliError {
-                    message: format!("{}: cannot write: {e}", path.display()),
-                    code: 1,
-                }),
-                None => w(out.write_all(text.as_bytes())),
+            write_output(output, &text, out)
+        }
+        Command::Curves {
+            model,
+            kind,
+            format,
+            dir,
+            output,
+            force,
+            threads,
+            weld,
+            max_depth,
+            tol,
+            abs_tol,
+        } => {
+            check_run_arguments(tol, max_depth, threads)?;
+            let projection = View::Direction(
+                parse_vector(&dir).map_err(|e| CliError::input(format!("--dir: {e}")))?,
+            );
+            if projection.is_degenerate() {
+                return Err(CliError::input(
+                    "--dir: the direction must not be the zero vector",
+                ));
             }
+            refuse_overwrite(output.iter(), force)?;
+            let name = model.display().to_string();
+            let m = read_model(&model).map_err(|e| CliError::input(e.to_string()))?;
+            let weld = match weld {
+                Some(s) => parse_weld(&s)?,
+                None => default_weld(&m),
+            };
+            let opts = CurveOptions {
+                max_depth,
+                ..CurveOptions::default()
+            };
+            let pool = thread_pool(threads)?;
+            let start = std::time::Instant::now();
+            let tol_abs = tol.map(|t| if abs_tol { t } else { t * m.diagonal() });
+            let (label, s) = match kind {
+                CurveKind::Parabolic => (
+                    "parabolic",
+                    pool.install(|| parabolic(&m, &opts, weld, tol_abs)),
+                ),
+            };
+            let ms = start.elapsed().as_secs_f64() * 1e3;
+            let report = SilhouetteReport::of_curves(
+                &name,
+                label,
+                serde_json::Value::Null,
+                &s,
+                ms,
+                pool.current_num_threads(),
+            );
+            let text = render_silhouette(format, &report, &m, &projection, &s)?;
+            write_output(output, &text, out)
         }
         Command::Check {
             model,
@@ -447,6 +511,65 @@ where
 
 /// A silhouette result as JSON, SVG or text.
 /// A worker pool of `threads` threads (all cores if `None`).
+/// An output error (exit code 1).
+fn w(r: std::io::Result<()>) -> Result<(), CliError> {
+    r.map_err(|e| CliError {
+        message: format!("cannot write the output: {e}"),
+        code: 1,
+    })
+}
+
+/// The checks shared by the commands that solve curves.
+fn check_run_arguments(
+    tol: Option<f64>,
+    max_depth: u32,
+    threads: Option<usize>,
+) -> Result<(), CliError> {
+    if let Some(t) = tol {
+        if !(t.is_finite() && t > 0.0) {
+            return Err(CliError::input(format!(
+                "--tol: expected a positive number, found {t}"
+            )));
+        }
+    }
+    if !(1..=40).contains(&max_depth) {
+        return Err(CliError::input(format!(
+            "--max-depth: expected 1..=40, found {max_depth}"
+        )));
+    }
+    if threads == Some(0) {
+        return Err(CliError::input("--threads: expected at least 1"));
+    }
+    Ok(())
+}
+
+/// Refuses to overwrite an existing file unless asked.
+fn refuse_overwrite<'a>(
+    paths: impl Iterator<Item = &'a PathBuf>,
+    force: bool,
+) -> Result<(), CliError> {
+    for path in paths {
+        if path.exists() && !force {
+            return Err(CliError::input(format!(
+                "{}: exists; not overwritten (use --force)",
+                path.display()
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// Writes a command's text to the file asked for, or to standard output.
+fn write_output(output: Option<PathBuf>, text: &str, out: &mut dyn Write) -> Result<(), CliError> {
+    match output {
+        Some(path) => std::fs::write(&path, text).map_err(|e| CliError {
+            message: format!("{}: cannot write: {e}", path.display()),
+            code: 1,
+        }),
+        None => w(out.write_all(text.as_bytes())),
+    }
+}
+
 fn thread_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, CliError> {
     rayon::ThreadPoolBuilder::new()
         .num_threads(threads.unwrap_or(0))
@@ -473,9 +596,10 @@ fn render_silhouette(
         }
         CurveFormat::Svg => {
             let title = format!(
-                "{}: {} silhouette curves ({}), {} unresolved regions",
+                "{}: {} {} curves ({}), {} unresolved regions",
                 report.model,
                 report.curves.len(),
+                report.kind,
                 if report.certified {
                     "certified"
                 } else if report.topology_certified {
@@ -502,7 +626,11 @@ fn silhouette_text(r: &SilhouetteReport) -> String {
             r.method
         );
     }
-    t += &format!("view: {}\n", r.view);
+    if r.view.is_null() {
+        t += &format!("kind: {}\n", r.kind);
+    } else {
+        t += &format!("view: {}\n", r.view);
+    }
     t += &format!(
         "curves: {} ({} closed); topology {}\n",
         r.curves.len(),
@@ -558,7 +686,13 @@ fn silhouette_text(r: &SilhouetteReport) -> String {
         );
     }
     for e in &r.unjoined_edges {
-        t += &format!("unjoined edge: patch {} {:?} / patch {} {:?} (no proven join: the silhouette functions are not proportional and the normals not parallel there, or the curve meets a side on which it lies at a point known only within an interval)\n", e.0, e.1, e.2, e.3);
+        t += &format!("unjoined edge: patch {} {:?} / patch {} {:?} (no proven join: the two patches' functions are not proportional there (nor, for silhouettes, the normals parallel), and their zeros on it are not proven apart; or the curve meets a side on which it lies at a point known only within an interval)\n", e.0, e.1, e.2, e.3);
+    }
+    if !r.ending_edges.is_empty() {
+        t += &format!(
+            "edges where curves end: {} (the function jumps across them; crossings common to both patches are joined, every other is proven not to be a zero of the other patch's function)\n",
+            r.ending_edges.len()
+        );
     }
     let mut kinds: std::collections::BTreeMap<&str, usize> = std::collections::BTreeMap::new();
     for d in &r.degenerate {

@@ -2,6 +2,7 @@
 
 pub mod accuracy;
 pub mod baseline;
+pub mod parabolic;
 pub mod render;
 pub mod silhouette;
 pub mod silhouette_certificate;

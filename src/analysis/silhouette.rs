@@ -70,7 +70,8 @@ pub struct Degenerate {
     /// "edge-on" (g ≡ 0: the whole patch is on the silhouette, e.g. a plane seen edge-on),
     /// "collapsed side" (a side collapsed to a point, where the normal vanishes),
     /// "silhouette side" (g vanishes on a whole side: the side is part of the silhouette) or
-    /// "silhouette line" (g vanishes on a whole line u = c or v = c inside the patch).
+    /// "silhouette line" (g vanishes on a whole line u = c or v = c inside the patch); for
+    /// other curve families, the names their [`CurveRules`] give.
     pub kind: &'static str,
     /// The side, for "collapsed side" and "silhouette side".
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -144,6 +145,10 @@ pub struct Silhouette {
     pub unresolved: Vec<(usize, crate::solver::DyadicBox, String)>,
     /// Shared edges across which the curves could not be joined with proof (patch sides).
     pub unjoined_edges: Vec<(usize, Edge, usize, Edge)>,
+    /// Shared edges across which the function jumps (a crease for silhouettes, a curvature
+    /// discontinuity for parabolic curves): crossings common to both patches (at the same
+    /// exact point) are joined, and every other curve reaching them ends there, proven.
+    pub ending_edges: Vec<(usize, Edge, usize, Edge)>,
     /// Boxes examined, summed over patches.
     pub boxes: usize,
     /// The tolerance the curves were traced to (absolute, model units), if any.
@@ -163,6 +168,7 @@ impl Silhouette {
             degenerate: Vec::new(),
             unresolved: Vec::new(),
             unjoined_edges: Vec::new(),
+            ending_edges: Vec::new(),
             boxes: 0,
             tolerance: None,
             escalations: Escalations::default(),
@@ -320,12 +326,57 @@ pub fn silhouette(
     weld: WeldTolerance,
     tol: Option<f64>,
 ) -> Silhouette {
+    let gs: Vec<Bernstein<Rational>> = model
+        .patches
+        .par_iter()
+        .map(|p| silhouette_function(&p.surface, view))
+        .collect();
+    let rules = CurveRules {
+        parallel_normal_joins: true,
+        whole_patch: "edge-on",
+        whole_side: "silhouette side",
+        whole_line: "silhouette line",
+    };
+    model_curves(model, gs, &rules, opts, weld, tol)
+}
+
+/// What differs between the curve families solved on a model by [`model_curves`].
+#[derive(Clone, Debug)]
+pub struct CurveRules {
+    /// Crossings on a shared edge are also joined where the two patches' normals are exactly
+    /// parallel along it (true for silhouettes, whose function is the normal times a fixed
+    /// vector; not for other families).
+    pub parallel_normal_joins: bool,
+    /// The `degenerate` kind of a patch whose function vanishes identically ("edge-on" for a
+    /// silhouette).
+    pub whole_patch: &'static str,
+    /// The `degenerate` kind of a side on which it vanishes ("silhouette side").
+    pub whole_side: &'static str,
+    /// The `degenerate` kind of a line inside a patch on which it vanishes ("silhouette
+    /// line").
+    pub whole_line: &'static str,
+}
+
+/// The curves `g_i = 0` on a model, one exact polynomial per patch (any family defined by
+/// one equation in the patch parameters: silhouettes, parabolic curves): solved per patch with
+/// certified topology, with collapsed sides divided out, sides and lines where `g` vanishes
+/// added back, crossings joined across shared edges where the join is proven, and, with a
+/// tolerance, traced with certified accuracy (`proofs/silhouette-join.md`,
+/// `proofs/chord-accuracy.md`).
+///
+/// # Panics
+/// If `gs` does not have one bivariate polynomial per patch.
+pub fn model_curves(
+    model: &Model,
+    gs: Vec<Bernstein<Rational>>,
+    rules: &CurveRules,
+    opts: &CurveOptions,
+    weld: WeldTolerance,
+    tol: Option<f64>,
+) -> Silhouette {
+    assert_eq!(gs.len(), model.patches.len(), "one polynomial per patch");
     let patches: Vec<&RationalPatch> = model.patches.iter().map(|p| &p.surface).collect();
     let adj = PatchAdjacency::of_patches(&patches, weld);
-    let gs: Vec<Bernstein<Rational>> = patches
-        .par_iter()
-        .map(|p| silhouette_function(p, view))
-        .collect();
     // On a collapsed side the normal vanishes, so g has that side's linear factor: divide it
     // out (exactly), so that the spurious zero set along the side does not meet the real curve
     // in a singular point. The sign inside the square is unchanged.
@@ -426,7 +477,7 @@ pub fn silhouette(
         if t.identically_zero {
             degenerate.push(Degenerate {
                 patch: i,
-                kind: "edge-on",
+                kind: rules.whole_patch,
                 side: None,
                 line: None,
             });
@@ -434,7 +485,7 @@ pub fn silhouette(
         for &side in &zero_sides[i] {
             degenerate.push(Degenerate {
                 patch: i,
-                kind: "silhouette side",
+                kind: rules.whole_side,
                 side: Some(side),
                 line: None,
             });
@@ -442,7 +493,7 @@ pub fn silhouette(
         for z in &lines[i] {
             degenerate.push(Degenerate {
                 patch: i,
-                kind: "silhouette line",
+                kind: rules.whole_line,
                 side: None,
                 line: Some(z.to_string()),
             });
@@ -472,6 +523,7 @@ pub fn silhouette(
     // Shared edges: join crossings when the two side polynomials are exactly proportional.
     let mut unjoined = Vec::new();
     let mut open_boundary: Vec<(usize, Edge)> = Vec::new();
+    let mut ending = Vec::new();
     for class in &adj.edges {
         if class.len() == 1 {
             open_boundary.push((class[0].patch, class[0].edge));
@@ -481,9 +533,19 @@ pub fn silhouette(
             continue;
         }
         let (a, b) = (class[0], class[1]);
-        let joined = join_side(&tops, &gs, &patches, a, b, &mut joins)
+        let normals = rules.parallel_normal_joins.then_some(&patches[..]);
+        let joined = join_side(&tops, &gs, normals, a, b, &mut joins)
             || join_zero_side(&mut tops, &gs, &quotients, a, b, &mut joins);
-        if !joined {
+        if joined {
+            continue;
+        }
+        if ends_at_edge(&tops, &gs, a, b, &mut joins) {
+            // The function jumps across the edge: crossings common to both patches are joined,
+            // every other curve reaching it ends there.
+            open_boundary.push((a.patch, a.edge));
+            open_boundary.push((b.patch, b.edge));
+            ending.push((a.patch, a.edge, b.patch, b.edge));
+        } else {
             unjoined.push((a.patch, a.edge, b.patch, b.edge));
         }
     }
@@ -540,6 +602,7 @@ pub fn silhouette(
         degenerate,
         unresolved,
         unjoined_edges: unjoined,
+        ending_edges: ending,
         boxes,
         tolerance: tol,
         escalations,
@@ -618,7 +681,7 @@ fn side_crossings(t: &CurveTopology, edge: Edge) -> Vec<(Dyadic, Dyadic, Crossin
 fn join_side(
     tops: &[CurveTopology],
     gs: &[Bernstein<Rational>],
-    patches: &[&RationalPatch],
+    patches: Option<&[&RationalPatch]>,
     a: SideUse,
     b: SideUse,
     joins: &mut Joins,
@@ -630,7 +693,8 @@ fn join_side(
         return false;
     }
     if !proportional(&pa, &pb, reversed)
-        && !parallel_normals(patches[a.patch], a.edge, patches[b.patch], b.edge, reversed)
+        && !patches
+            .is_some_and(|p| parallel_normals(p[a.patch], a.edge, p[b.patch], b.edge, reversed))
     {
         return false;
     }
@@ -659,6 +723,91 @@ fn join_side(
         joins.union((a.patch, *ida), (b.patch, *idb));
     }
     true
+}
+
+/// Where the function jumps across a shared edge (both side polynomials nonzero, not
+/// proportional): crossings of the two patches at the same exact parameter are the same point
+/// of both curves and are joined; every other crossing of either patch must be proven not to
+/// be a zero of the other patch's function there (its exact location, a point or its isolating
+/// interval on the side mapped through the reversal, holds no root of the other side
+/// polynomial: exact evaluation, or root isolation on the interval), so the curve ends there.
+/// Returns whether all of it was proven (then the joins are made).
+fn ends_at_edge(
+    tops: &[CurveTopology],
+    gs: &[Bernstein<Rational>],
+    a: SideUse,
+    b: SideUse,
+    joins: &mut Joins,
+) -> bool {
+    let reversed = a.reversed != b.reversed;
+    let (pa, pb) = (
+        side_polynomial(&gs[a.patch], a.edge),
+        side_polynomial(&gs[b.patch], b.edge),
+    );
+    if pa.is_zero() || pb.is_zero() {
+        return false;
+    }
+    let avoids = |crossings: Vec<(Dyadic, Dyadic, CrossingId)>,
+                  t: &CurveTopology,
+                  other: &Bernstein<Rational>| {
+        crossings.into_iter().all(|(lo, hi, id)| {
+            let (lo, hi) = match id {
+                CrossingId::Segment { .. } => t.intervals.get(&id).copied().unwrap_or((lo, hi)),
+                CrossingId::Exact { .. } => (lo, hi),
+            };
+            let (lo, hi) = if reversed {
+                (hi.one_minus(), lo.one_minus())
+            } else {
+                (lo, hi)
+            };
+            if lo == hi {
+                return other.eval(&[lo.to_rational()]).cmp0() != std::cmp::Ordering::Equal;
+            }
+            let r = crate::solver::isolate_roots_in(
+                other,
+                lo,
+                hi,
+                &crate::solver::Ladder::default(),
+                40,
+                &mut Escalations::default(),
+            );
+            r.roots.is_empty() && r.unresolved.is_empty() && !r.identically_zero
+        })
+    };
+    // Exact crossings at the same parameter (in a's parameter along the edge).
+    let exact = |t: &CurveTopology, edge: Edge, map: bool| -> Vec<(Dyadic, CrossingId)> {
+        side_crossings(t, edge)
+            .into_iter()
+            .filter(|(lo, hi, _)| lo == hi)
+            .map(|(lo, _, id)| (if map && reversed { lo.one_minus() } else { lo }, id))
+            .collect()
+    };
+    let (ea, eb) = (
+        exact(&tops[a.patch], a.edge, false),
+        exact(&tops[b.patch], b.edge, true),
+    );
+    let pairs: Vec<(CrossingId, CrossingId)> = ea
+        .iter()
+        .filter_map(|(t, ida)| eb.iter().find(|(s, _)| s == t).map(|(_, idb)| (*ida, *idb)))
+        .collect();
+    let unpaired = |t: &CurveTopology, edge: Edge, mine: bool| {
+        side_crossings(t, edge)
+            .into_iter()
+            .filter(|x| {
+                !pairs
+                    .iter()
+                    .any(|p| if mine { p.0 == x.2 } else { p.1 == x.2 })
+            })
+            .collect::<Vec<_>>()
+    };
+    let proven = avoids(unpaired(&tops[a.patch], a.edge, true), &tops[a.patch], &pb)
+        && avoids(unpaired(&tops[b.patch], b.edge, false), &tops[b.patch], &pa);
+    if proven {
+        for (ida, idb) in pairs {
+            joins.union((a.patch, ida), (b.patch, idb));
+        }
+    }
+    proven
 }
 
 /// Points added inside each arc for drawing.
@@ -817,10 +966,15 @@ fn join_zero_side(
     b: SideUse,
     joins: &mut Joins,
 ) -> bool {
-    if !side_polynomial(&gs[a.patch], a.edge).is_zero()
-        || !side_polynomial(&gs[b.patch], b.edge).is_zero()
-    {
-        return false;
+    let (za, zb) = (
+        side_polynomial(&gs[a.patch], a.edge).is_zero(),
+        side_polynomial(&gs[b.patch], b.edge).is_zero(),
+    );
+    match (za, zb) {
+        (false, false) => return false,
+        (true, false) => return join_one_sided(tops, a, b, joins),
+        (false, true) => return join_one_sided(tops, b, a, joins),
+        (true, true) => {}
     }
     let reversed = a.reversed != b.reversed;
     // The exact parameter along the side of a crossing on it: an exact point, or a root
@@ -889,6 +1043,63 @@ fn join_zero_side(
     }
     for (patch, id, t) in nodes {
         joins.union((patch, id), (a.patch, side_point(a.edge, t)));
+    }
+    true
+}
+
+/// Joins a shared edge that lies on the curve of patch `zero` only (its function vanishes on
+/// the side, the other's does not: the function jumps across the edge). Every point of the edge
+/// is on the curve, so each crossing of `other` on it is joined to the point of `zero`'s side
+/// arcs with the same parameter, which is inserted as a node. Proven only for crossings at exact
+/// (dyadic) parameters that do not fall strictly inside an isolating interval of `zero`'s own
+/// crossings on the side; otherwise nothing is changed and the edge stays unjoined.
+fn join_one_sided(
+    tops: &mut [CurveTopology],
+    zero: SideUse,
+    other: SideUse,
+    joins: &mut Joins,
+) -> bool {
+    let reversed = zero.reversed != other.reversed;
+    let own = side_crossings(&tops[zero.patch], zero.edge);
+    let mut extra = Vec::new();
+    for (lo, hi, id) in side_crossings(&tops[other.patch], other.edge) {
+        if corner_index(&id).is_some() {
+            continue; // corners are joined as vertices
+        }
+        let t = match id {
+            CrossingId::Exact { .. } => lo,
+            CrossingId::Segment { .. } => match tops[other.patch].intervals.get(&id) {
+                Some(&(l, h)) if l == h => l,
+                _ => return false,
+            },
+        };
+        debug_assert!(lo <= t && t <= hi);
+        let t = if reversed { t.one_minus() } else { t };
+        let inside = own.iter().any(|&(l, h, oid)| {
+            let (l, h) = match oid {
+                CrossingId::Segment { .. } => tops[zero.patch]
+                    .intervals
+                    .get(&oid)
+                    .copied()
+                    .unwrap_or((l, h)),
+                CrossingId::Exact { .. } => (l, h),
+            };
+            l < t && t < h
+        });
+        if inside {
+            return false;
+        }
+        extra.push((id, t));
+    }
+    let (fixed, at_one) = side_axis(zero.edge);
+    let c = if at_one { Dyadic::ONE } else { Dyadic::ZERO };
+    let tz = &mut tops[zero.patch];
+    tz.arcs
+        .retain(|arc| !(arc.reason == "on edge" && both_on(&arc.from, &arc.to, zero.edge)));
+    let at: Vec<Dyadic> = extra.iter().map(|e| e.1).collect();
+    add_line(tz, fixed, c, &at);
+    for (id, t) in extra {
+        joins.union((other.patch, id), (zero.patch, line_point(fixed, c, t)));
     }
     true
 }
@@ -1156,9 +1367,13 @@ pub struct UnresolvedSummary {
 pub struct SilhouetteReport {
     /// The model file.
     pub model: String,
+    /// The curve family: "silhouette", "parabolic".
+    pub kind: String,
     /// "certified", or an uncertified float baseline: "mesh", "srf-node".
     pub method: String,
-    /// `{"dir": [x, y, z]}` or `{"eye": [x, y, z]}`, as f64.
+    /// `{"dir": [x, y, z]}` or `{"eye": [x, y, z]}`, as f64 (absent for curves that do not
+    /// depend on a view).
+    #[serde(skip_serializing_if = "serde_json::Value::is_null")]
     pub view: serde_json::Value,
     /// Whether the whole answer is certified: topology proven and every drawn segment within
     /// `tolerance` of the true curve.
@@ -1175,6 +1390,8 @@ pub struct SilhouetteReport {
     pub unresolved: Vec<UnresolvedSummary>,
     /// Shared edges across which curves could not be joined with proof.
     pub unjoined_edges: Vec<(usize, Edge, usize, Edge)>,
+    /// Shared edges where curves end, proven (the function jumps across them).
+    pub ending_edges: Vec<(usize, Edge, usize, Edge)>,
     /// Degenerate cases recognised exactly.
     pub degenerate: Vec<Degenerate>,
     /// Work done.
@@ -1223,6 +1440,24 @@ impl SilhouetteReport {
         time_ms: f64,
         threads: usize,
     ) -> SilhouetteReport {
+        let v = |x: &[Rational; 3]| x.clone().map(|c| c.to_f64());
+        let view = match view {
+            View::Direction(d) => serde_json::json!({ "dir": v(d) }),
+            View::Eye(e) => serde_json::json!({ "eye": v(e) }),
+        };
+        SilhouetteReport::of_curves(model, "silhouette", view, s, time_ms, threads)
+    }
+
+    /// The report of a run of [`model_curves`] for the curve family `kind`, with the view it
+    /// depends on (JSON null if none).
+    pub fn of_curves(
+        model: &str,
+        kind: &str,
+        view: serde_json::Value,
+        s: &Silhouette,
+        time_ms: f64,
+        threads: usize,
+    ) -> SilhouetteReport {
         let mut per_patch: BTreeMap<usize, UnresolvedSummary> = BTreeMap::new();
         for (p, cell, reason) in &s.unresolved {
             let [lo, hi] = cell.to_f64();
@@ -1238,16 +1473,12 @@ impl SilhouetteReport {
                 e.hull[1][k] = e.hull[1][k].max(hi[k]);
             }
         }
-        let v = |x: &[Rational; 3]| x.clone().map(|c| c.to_f64());
-        let view = match view {
-            View::Direction(d) => serde_json::json!({ "dir": v(d) }),
-            View::Eye(e) => serde_json::json!({ "eye": v(e) }),
-        };
         let topology_certified = s.unresolved.is_empty()
             && s.unjoined_edges.is_empty()
             && s.curves.iter().all(|c| c.certified_topology);
         SilhouetteReport {
             model: model.to_string(),
+            kind: kind.to_string(),
             method: "certified".to_string(),
             view,
             certified: topology_certified
@@ -1259,6 +1490,7 @@ impl SilhouetteReport {
             singular_points: s.singular_points.clone(),
             unresolved: per_patch.into_values().collect(),
             unjoined_edges: s.unjoined_edges.clone(),
+            ending_edges: s.ending_edges.clone(),
             degenerate: s.degenerate.clone(),
             stats: SilhouetteStats {
                 boxes: s.boxes,

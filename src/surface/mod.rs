@@ -3,7 +3,7 @@
 //! All coordinates are exact rationals, as the model file states them.
 
 mod mesh;
-mod normal;
+pub(crate) mod normal;
 mod nurbs;
 mod patch;
 

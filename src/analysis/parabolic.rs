@@ -1,0 +1,94 @@
+//! Parabolic curves (Gaussian curvature K = 0) of rational Bézier models, with certified
+//! topology: one exact polynomial per patch, solved by the same model-level curve machinery
+//! as silhouettes ([`model_curves`]).
+//!
+//! With homogeneous coordinates `Q = (P, W)`, `P = [wx, wy, wz]`, the second fundamental form
+//! against the unnormalized normal is, up to one common factor,
+//! `L' = P_uu · Ñ − W_uu D`, `M' = P_uv · Ñ − W_uv D`, `N' = P_vv · Ñ − W_vv D`, with
+//! `Ñ = W (P_u × P_v) + W_u (P_v × P) + W_v (P × P_u)` and `D = det(P, P_u, P_v)`; and
+//! `k = L'N' − M'² = W⁸ (LN − M²)` for `L = S_uu · (S_u × S_v)` etc., so k has the sign of the
+//! Gaussian curvature wherever the patch is regular (`proofs/parabolic.md`).
+
+use super::silhouette::{model_curves, CurveRules, Silhouette};
+use crate::bernstein::Bernstein;
+use crate::model::{Model, WeldTolerance};
+use crate::number::Rational;
+use crate::solver::CurveOptions;
+use crate::surface::normal::cross;
+use crate::surface::RationalPatch;
+use rayon::prelude::*;
+
+type Poly = Bernstein<Rational>;
+
+fn dot(a: &[Poly; 3], b: &[Poly; 3]) -> Poly {
+    &(&(&a[0] * &b[0]) + &(&a[1] * &b[1])) + &(&a[2] * &b[2])
+}
+
+/// The parabolic function `k = L'N' − M'²` of a patch (exact, at its lowest exact degrees):
+/// positive where the patch is elliptic, negative where hyperbolic, zero on parabolic points
+/// (and where the patch is singular).
+///
+/// # Examples
+/// ```
+/// use limn::analysis::parabolic::parabolic_function;
+/// use limn::number::Rational;
+/// use limn::testing::shapes;
+/// // A sphere is elliptic everywhere inside each patch.
+/// let k = parabolic_function(&shapes::sphere(&Rational::from(1))[0]);
+/// assert!(k.eval(&[Rational::from((1, 2)), Rational::from((1, 3))]) > 0);
+/// ```
+pub fn parabolic_function(patch: &RationalPatch) -> Poly {
+    let [px, py, pz, w] = patch.homogeneous();
+    let p = [px, py, pz];
+    let d = |c: &[Poly; 3], axis: usize| c.clone().map(|x| x.deriv(axis));
+    let (pu, pv) = (d(&p, 0), d(&p, 1));
+    let (puu, puv, pvv) = (d(&pu, 0), d(&pu, 1), d(&pv, 1));
+    let n = patch.normal();
+    let second = |x: &[Poly; 3]| dot(x, &n);
+    let (mut l, mut m, mut nn) = (second(&puu), second(&puv), second(&pvv));
+    if !patch.is_polynomial() {
+        // D = det(P, P_u, P_v) and the weight's second derivatives.
+        let det = dot(&p, &cross(&pu, &pv));
+        let (wu, wv) = (w.deriv(0), w.deriv(1));
+        let (wuu, wuv, wvv) = (wu.deriv(0), wu.deriv(1), wv.deriv(1));
+        l = &l - &(&wuu * &det);
+        m = &m - &(&wuv * &det);
+        nn = &nn - &(&wvv * &det);
+    }
+    (&(&l * &nn) - &(&m * &m)).reduce_degree_exact()
+}
+
+/// The parabolic curves of a model, certified as silhouettes are (topology, and accuracy with
+/// a tolerance). A patch on which k vanishes identically (a plane, a cylinder, a cone) is
+/// reported in `degenerate` as "parabolic everywhere".
+///
+/// # Examples
+/// ```
+/// use limn::analysis::parabolic::parabolic;
+/// use limn::model::{Format, Model, WeldTolerance};
+/// use limn::number::Rational;
+/// use limn::solver::CurveOptions;
+/// use limn::testing::shapes;
+/// let sphere = Model::from_patches(Format::Json, shapes::sphere(&Rational::from(1)));
+/// let s = parabolic(&sphere, &CurveOptions::default(), WeldTolerance::Exact, None);
+/// assert!(s.curves.is_empty() && s.unresolved.is_empty());
+/// ```
+pub fn parabolic(
+    model: &Model,
+    opts: &CurveOptions,
+    weld: WeldTolerance,
+    tol: Option<f64>,
+) -> Silhouette {
+    let ks: Vec<Poly> = model
+        .patches
+        .par_iter()
+        .map(|p| parabolic_function(&p.surface))
+        .collect();
+    let rules = CurveRules {
+        parallel_normal_joins: false,
+        whole_patch: "parabolic everywhere",
+        whole_side: "parabolic side",
+        whole_line: "parabolic line",
+    };
+    model_curves(model, ks, &rules, opts, weld, tol)
+}
