@@ -166,9 +166,92 @@ fn one_sided_parabolic_edges_are_curve() {
     }
     // The top edge of the body is a closed circle through patches 4..8.
     let circle = s.curves.iter().find(|c| {
-        c.closed && (4..8).all(|p| c.patches.contains(&p)) && c.patches.iter().all(|p| (4..8).contains(p))
+        c.closed
+            && (4..8).all(|p| c.patches.contains(&p))
+            && c.patches.iter().all(|p| (4..8).contains(p))
     });
     let circle = circle.expect("the body's top circle");
     let z0 = circle.points[0][2];
     assert!(circle.points.iter().all(|p| (p[2] - z0).abs() < 1e-12));
+}
+
+/// The parabolic function is exactly a positive constant times `W⁸ (LN − M²)` with `L = S_uu · (S_u × S_v)` etc.,
+/// computed here independently from the quotient rule on `S = P / W` in exact rationals, at
+/// sample points of rational patches (sphere, torus, a rotated and shifted torus) and of a
+/// polynomial teapot patch.
+#[test]
+fn identity_with_the_second_fundamental_form() {
+    use limn::bernstein::Bernstein;
+    type R = Rational;
+    let rot = shapes::rotation(0, 3, 4);
+    let shift = [q(1, 2), q(-2, 1), q(3, 1)];
+    let mut patches = vec![
+        shapes::sphere(&q(2, 1))[3].clone(),
+        shapes::torus(&q(3, 1), &q(1, 1))[5].clone(),
+        shapes::transform(&shapes::torus(&q(5, 2), &q(1, 1))[2], &rot, &shift),
+    ];
+    let teapot = limn::io::read_model_bytes(
+        "teapot",
+        include_bytes!("../fixtures/bezier/teapot.bpt"),
+        Some(Format::Bpt),
+    )
+    .unwrap();
+    patches.push(teapot.patches[5].surface.clone());
+    for p in &patches {
+        let k = parabolic_function(p);
+        let [px, py, pz, w] = p.homogeneous();
+        let comps = [px, py, pz, w];
+        let d = |b: &Bernstein<R>, du: usize, dv: usize| {
+            let mut b = b.clone();
+            for _ in 0..du {
+                b = b.deriv(0);
+            }
+            for _ in 0..dv {
+                b = b.deriv(1);
+            }
+            b
+        };
+        let mut scale: Option<R> = None;
+        for (a, b) in [(1, 3), (2, 5), (5, 7), (1, 2)] {
+            let pt = [q(a, 8), q(b, 8)];
+            let ev = |du, dv| -> [R; 4] { [0, 1, 2, 3].map(|i| d(&comps[i], du, dv).eval(&pt)) };
+            let (h, hu, hv, huu, huv, hvv) =
+                (ev(0, 0), ev(1, 0), ev(0, 1), ev(2, 0), ev(1, 1), ev(0, 2));
+            let w0 = h[3].clone();
+            let s: [R; 3] = [0, 1, 2].map(|i| R::from(&h[i] / &w0));
+            let su: [R; 3] = [0, 1, 2].map(|i| (R::from(&hu[i] - &s[i] * hu[3].clone())) / &w0);
+            let sv: [R; 3] = [0, 1, 2].map(|i| (R::from(&hv[i] - &s[i] * hv[3].clone())) / &w0);
+            let suu: [R; 3] = [0, 1, 2].map(|i| {
+                (huu[i].clone() - R::from(2) * &su[i] * &hu[3] - &s[i] * huu[3].clone()) / &w0
+            });
+            let suv: [R; 3] = [0, 1, 2].map(|i| {
+                (huv[i].clone()
+                    - &su[i] * hv[3].clone()
+                    - &sv[i] * hu[3].clone()
+                    - &s[i] * huv[3].clone())
+                    / &w0
+            });
+            let svv: [R; 3] = [0, 1, 2].map(|i| {
+                (hvv[i].clone() - R::from(2) * &sv[i] * &hv[3] - &s[i] * hvv[3].clone()) / &w0
+            });
+            let n = [
+                R::from(&su[1] * &sv[2]) - R::from(&su[2] * &sv[1]),
+                R::from(&su[2] * &sv[0]) - R::from(&su[0] * &sv[2]),
+                R::from(&su[0] * &sv[1]) - R::from(&su[1] * &sv[0]),
+            ];
+            let dot = |x: &[R; 3]| -> R { (0..3).map(|i| R::from(&x[i] * &n[i])).sum() };
+            let (l, m, nn) = (dot(&suu), dot(&suv), dot(&svv));
+            let w8 = (0..8).fold(R::from(1), |acc, _| acc * &w0);
+            let expected = w8 * (R::from(&l * &nn) - R::from(&m * &m));
+            // Equal up to one positive constant per patch (the scaling to integer coordinates).
+            let got = k.eval(&pt);
+            assert!(expected != 0, "at ({a}/8, {b}/8)");
+            let ratio = got / expected;
+            assert!(ratio > 0, "at ({a}/8, {b}/8)");
+            match &scale {
+                None => scale = Some(ratio),
+                Some(r) => assert_eq!(*r, ratio, "at ({a}/8, {b}/8)"),
+            }
+        }
+    }
 }

@@ -24,6 +24,18 @@ fn dot(a: &[Poly; 3], b: &[Poly; 3]) -> Poly {
     &(&(&a[0] * &b[0]) + &(&a[1] * &b[1])) + &(&a[2] * &b[2])
 }
 
+/// The polynomials scaled by one positive integer so that every coefficient is an integer.
+fn integral<const K: usize>(ps: [Poly; K]) -> [Poly; K] {
+    let mut l = rug::Integer::from(1);
+    for p in &ps {
+        for c in p.coeffs() {
+            l.lcm_mut(c.denom());
+        }
+    }
+    let l = Rational::from(l);
+    ps.map(|p| p.scale(&l))
+}
+
 /// The parabolic function `k = L'N' − M'²` of a patch (exact, at its lowest exact degrees):
 /// positive where the patch is elliptic, negative where hyperbolic, zero on parabolic points
 /// (and where the patch is singular).
@@ -38,12 +50,24 @@ fn dot(a: &[Poly; 3], b: &[Poly; 3]) -> Poly {
 /// assert!(k.eval(&[Rational::from((1, 2)), Rational::from((1, 3))]) > 0);
 /// ```
 pub fn parabolic_function(patch: &RationalPatch) -> Poly {
-    let [px, py, pz, w] = patch.homogeneous();
+    // Homogeneous coordinates scaled by the lcm of their denominators: integers, so that the
+    // products below stay cheap (k only gains a positive constant factor).
+    let [px, py, pz, w] = integral(patch.homogeneous());
     let p = [px, py, pz];
     let d = |c: &[Poly; 3], axis: usize| c.clone().map(|x| x.deriv(axis));
     let (pu, pv) = (d(&p, 0), d(&p, 1));
     let (puu, puv, pvv) = (d(&pu, 0), d(&pu, 1), d(&pv, 1));
-    let n = patch.normal();
+    let n: [Poly; 3] = if patch.is_polynomial() {
+        // W is a constant: Ñ = W (P_u × P_v), and the constant is dropped.
+        cross(&pu, &pv).map(|c| c.reduce_degree_exact())
+    } else {
+        let (wu, wv) = (w.deriv(0), w.deriv(1));
+        let a = cross(&pu, &pv);
+        let b = cross(&pv, &p);
+        let c = cross(&p, &pu);
+        [0, 1, 2]
+            .map(|k| (&(&(&w * &a[k]) + &(&wu * &b[k])) + &(&wv * &c[k])).reduce_degree_exact())
+    };
     let second = |x: &[Poly; 3]| dot(x, &n);
     let (mut l, mut m, mut nn) = (second(&puu), second(&puv), second(&pvv));
     if !patch.is_polynomial() {

@@ -73,6 +73,22 @@ impl<N: Number> Bernstein<N> {
         if self.nvars != other.nvars {
             return Err(BernsteinError::Mismatch(self.nvars, other.nvars));
         }
+        // Exact rationals: one common denominator per operand, then integer convolution (no
+        // gcd per term); the result is the same exact polynomial.
+        let any_self: &dyn std::any::Any = self;
+        if let Some(a) = any_self.downcast_ref::<Bernstein<Rational>>() {
+            let any_other: &dyn std::any::Any = other;
+            let b = any_other
+                .downcast_ref::<Bernstein<Rational>>()
+                .expect("same coefficient type");
+            let product: Box<dyn std::any::Any> = Box::new(mul_rational(a, b));
+            return Ok(*product.downcast::<Self>().expect("same coefficient type"));
+        }
+        self.mul_generic(other)
+    }
+
+    /// [`Bernstein::try_mul`] for any coefficient type (the variable counts are equal).
+    pub(crate) fn mul_generic(&self, other: &Self) -> Result<Self, BernsteinError> {
         let k = self.nvars;
         let prec = self.coeffs[0].precision();
         let degrees: Vec<usize> = (0..k).map(|a| self.degrees[a] + other.degrees[a]).collect();
@@ -150,5 +166,95 @@ impl<N: Number> std::ops::Mul for &Bernstein<N> {
     /// If the variable counts differ (use [`Bernstein::try_mul`] to get an error instead).
     fn mul(self, rhs: Self) -> Bernstein<N> {
         self.try_mul(rhs).expect("same number of variables")
+    }
+}
+
+/// The exact product of two rational Bernstein polynomials with the same variable count:
+/// each operand scaled by its binomials and by the lcm of its denominators to integers,
+/// convolved in integers, and each output coefficient divided once by the common denominator
+/// and its own binomial (the formula of [`Bernstein::try_mul`]).
+fn mul_rational(a: &Bernstein<Rational>, b: &Bernstein<Rational>) -> Bernstein<Rational> {
+    let k = a.nvars;
+    let degrees: Vec<usize> = (0..k).map(|x| a.degrees[x] + b.degrees[x]).collect();
+    let integral = |p: &Bernstein<Rational>| -> (Vec<Integer>, Integer) {
+        let mut l = Integer::from(1);
+        for c in &p.coeffs {
+            l.lcm_mut(c.denom());
+        }
+        let v = p
+            .coeffs
+            .iter()
+            .enumerate()
+            .map(|(flat, c)| {
+                let w = binomial_weight(p.degrees(), &p.multi_index(flat));
+                (c.numer() * Integer::from(&l / c.denom())) * w
+            })
+            .collect();
+        (v, l)
+    };
+    let ((sa, la), (sb, lb)) = (integral(a), integral(b));
+    let out_strides: Vec<usize> = (0..k)
+        .map(|x| degrees[x + 1..].iter().map(|d| d + 1).product())
+        .collect();
+    let mut out: Vec<Integer> = vec![Integer::new(); degrees.iter().map(|d| d + 1).product()];
+    let flat_b: Vec<usize> = (0..sb.len())
+        .map(|fb| {
+            let ib = b.multi_index(fb);
+            (0..k).map(|x| ib[x] * out_strides[x]).sum()
+        })
+        .collect();
+    for (fa, x) in sa.iter().enumerate() {
+        if x.is_zero() {
+            continue;
+        }
+        let ia = a.multi_index(fa);
+        let base: usize = (0..k).map(|j| ia[j] * out_strides[j]).sum();
+        for (y, off) in sb.iter().zip(&flat_b) {
+            out[base + off] += x * y;
+        }
+    }
+    let denom = Integer::from(&la * &lb);
+    let mut d = [0; super::MAX_VARS];
+    d[..k].copy_from_slice(&degrees);
+    let template = Bernstein {
+        nvars: k,
+        degrees: d,
+        coeffs: Vec::<Rational>::new(),
+    };
+    let coeffs = out
+        .into_iter()
+        .enumerate()
+        .map(|(flat, c)| {
+            let w = binomial_weight(&degrees, &template.multi_index(flat));
+            Rational::from((c, Integer::from(&denom * &w)))
+        })
+        .collect();
+    Bernstein { coeffs, ..template }
+}
+
+#[cfg(test)]
+mod mul_tests {
+    use super::*;
+
+    /// The rational fast path equals the generic formula, on polynomials with mixed
+    /// denominators and zeros, in one and two variables.
+    #[test]
+    fn rational_product_matches_the_generic_formula() {
+        let q = |n: i64, d: i64| Rational::from((n, d));
+        let a = Bernstein::new(
+            &[2, 1],
+            vec![q(1, 3), q(-2, 5), q(0, 1), q(7, 4), q(-1, 6), q(3, 10)],
+        )
+        .unwrap();
+        let b = Bernstein::new(
+            &[1, 2],
+            vec![q(5, 7), q(-3, 2), q(1, 9), q(2, 1), q(0, 1), q(-11, 12)],
+        )
+        .unwrap();
+        assert_eq!(a.try_mul(&b).unwrap(), a.mul_generic(&b).unwrap());
+        let c = Bernstein::new(&[3], vec![q(1, 2), q(-1, 3), q(1, 4), q(-1, 5)]).unwrap();
+        let e = Bernstein::new(&[0], vec![q(-7, 3)]).unwrap();
+        assert_eq!(c.try_mul(&e).unwrap(), c.mul_generic(&e).unwrap());
+        assert_eq!(c.try_mul(&c).unwrap(), c.mul_generic(&c).unwrap());
     }
 }

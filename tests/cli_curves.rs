@@ -1,0 +1,112 @@
+//! `limn curves --kind parabolic`: the JSON contract on the teapot, SVG output, bad arguments
+//! (exit 2, one line), no overwrite without --force.
+
+use serde_json::Value;
+use std::path::PathBuf;
+use std::process::Command;
+
+fn limn(args: &[&str]) -> (Option<i32>, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_limn"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("run limn");
+    (
+        out.status.code(),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli_curves");
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+const TEAPOT: &str = "fixtures/bezier/teapot.bpt";
+
+#[test]
+fn parabolic_json_contract() {
+    let (code, out, err) = limn(&[
+        "curves",
+        TEAPOT,
+        "--kind",
+        "parabolic",
+        "--format",
+        "json",
+        "--tol",
+        "1e-4",
+    ]);
+    assert_eq!(code, Some(0), "{err}");
+    let r: Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(r["kind"], "parabolic");
+    assert!(r.get("view").is_none());
+    assert_eq!(r["certified"], true);
+    assert_eq!(r["topology_certified"], true);
+    let curves = r["curves"].as_array().unwrap();
+    assert!(!curves.is_empty());
+    for c in curves {
+        assert_eq!(
+            c["points"].as_array().unwrap().len(),
+            c["points_uv"].as_array().unwrap().len()
+        );
+    }
+    assert!(!r["ending_edges"].as_array().unwrap().is_empty());
+    assert!(r["degenerate"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .any(|d| d["kind"] == "parabolic line"));
+}
+
+#[test]
+fn svg_output_and_no_overwrite() {
+    let path = tmp("teapot-parabolic.svg");
+    let _ = std::fs::remove_file(&path);
+    let p = path.to_str().unwrap();
+    let (code, _, err) = limn(&[
+        "curves",
+        TEAPOT,
+        "--kind",
+        "parabolic",
+        "--format",
+        "svg",
+        "-o",
+        p,
+    ]);
+    assert_eq!(code, Some(0), "{err}");
+    let svg = std::fs::read_to_string(&path).unwrap();
+    assert!(svg.starts_with("<svg") || svg.starts_with("<?xml"));
+    assert!(svg.contains("parabolic curves"));
+    let (code, _, err) = limn(&[
+        "curves",
+        TEAPOT,
+        "--kind",
+        "parabolic",
+        "--format",
+        "svg",
+        "-o",
+        p,
+    ]);
+    assert_eq!(code, Some(2));
+    assert!(err.contains("not overwritten"), "{err}");
+    assert_eq!(std::fs::read_to_string(&path).unwrap(), svg);
+}
+
+#[test]
+fn bad_arguments_are_exit_2_with_one_line() {
+    for args in [
+        &["curves", TEAPOT, "--kind", "flecnodal"][..],
+        &["curves", TEAPOT][..],
+        &["curves", TEAPOT, "--kind", "parabolic", "--tol", "-1"][..],
+        &["curves", TEAPOT, "--kind", "parabolic", "--dir", "0,0,0"][..],
+        &["curves", TEAPOT, "--kind", "parabolic", "--threads", "0"][..],
+        &["curves", "no/such/file.bpt", "--kind", "parabolic"][..],
+    ] {
+        let (code, out, err) = limn(args);
+        assert_eq!(code, Some(2), "{args:?}: {err}");
+        assert!(out.is_empty());
+        assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
+    }
+}
