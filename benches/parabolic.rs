@@ -4,16 +4,11 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use limn::analysis::parabolic::{parabolic, parabolic_function};
-use limn::model::{Format, WeldTolerance};
+use limn::model::WeldTolerance;
 use limn::solver::CurveOptions;
 
 fn benches(c: &mut Criterion) {
-    let teapot = limn::io::read_model_bytes(
-        "teapot",
-        limn::cli::EMBEDDED_TEAPOT.as_bytes(),
-        Some(Format::Bpt),
-    )
-    .unwrap();
+    let teapot = limn::testing::teapot();
     let opts = CurveOptions::default();
     let tol = 1e-6 * teapot.diagonal();
     let mut g = c.benchmark_group("parabolic");

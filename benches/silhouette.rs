@@ -20,12 +20,7 @@ fn benches(c: &mut Criterion) {
         .num_threads(1)
         .build()
         .unwrap();
-    let teapot = limn::io::read_model_bytes(
-        "teapot",
-        limn::cli::EMBEDDED_TEAPOT.as_bytes(),
-        Some(Format::Bpt),
-    )
-    .unwrap();
+    let teapot = limn::testing::teapot();
     let opts = CurveOptions::default();
     let mut g = c.benchmark_group("silhouette");
     g.bench_function("teapot-1,2,3", |b| {
@@ -62,12 +57,7 @@ fn benches(c: &mut Criterion) {
 /// The certified drawing at a tolerance (relative to the teapot's diagonal), on 1 and 2
 /// threads; one patch at 1e-6; and the independent check of a certificate.
 fn traced(c: &mut Criterion) {
-    let teapot = limn::io::read_model_bytes(
-        "teapot",
-        limn::cli::EMBEDDED_TEAPOT.as_bytes(),
-        Some(Format::Bpt),
-    )
-    .unwrap();
+    let teapot = limn::testing::teapot();
     let diag = teapot.diagonal();
     let opts = CurveOptions::default();
     let mut g = c.benchmark_group("silhouette-tol");
@@ -157,12 +147,7 @@ fn one_sided(a: &[Vec<[f64; 3]>], b: &[Vec<[f64; 3]>]) -> f64 {
 /// distance of its drawing from the certified curve (traced at 1e-6 × the diagonal), and the
 /// converse, are measured once and printed; then both are timed, limn certified at the first.
 fn mesh_ratio(c: &mut Criterion) {
-    let teapot = limn::io::read_model_bytes(
-        "teapot",
-        limn::cli::EMBEDDED_TEAPOT.as_bytes(),
-        Some(Format::Bpt),
-    )
-    .unwrap();
+    let teapot = limn::testing::teapot();
     let one = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
         .build()

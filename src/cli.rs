@@ -68,29 +68,8 @@ enum Command {
         /// Output format.
         #[arg(long, value_enum, default_value_t = CurveFormat::Text)]
         format: CurveFormat,
-        /// Write to this file instead of standard output (refused if it exists, unless --force).
-        #[arg(short = 'o', long = "output")]
-        output: Option<PathBuf>,
-        /// Overwrite the output file if it exists.
-        #[arg(long)]
-        force: bool,
-        /// Worker threads (default: all cores).
-        #[arg(long)]
-        threads: Option<usize>,
-        /// How patch boundaries are matched: "exact" or a distance (default as for `info`).
-        #[arg(long, allow_hyphen_values = true)]
-        weld: Option<String>,
-        /// The deepest subdivision (the box side is 2^-depth), 1..=40.
-        #[arg(long, default_value_t = 24)]
-        max_depth: u32,
-        /// Certify the drawing: every segment within this distance of the true silhouette,
-        /// relative to the bounding-box diagonal (absolute with --abs-tol). Without it the
-        /// topology is certified but the chords are not bounded (and `certified` is false).
-        #[arg(long, allow_hyphen_values = true)]
-        tol: Option<f64>,
-        /// Read --tol as an absolute distance in model units.
-        #[arg(long)]
-        abs_tol: bool,
+        #[command(flatten)]
+        run: RunArgs,
         /// "certified" (limn), or an uncertified float baseline of paper 002 for comparison:
         /// "mesh" (control-mesh normals) or "srf-node" (signs at the control points' parameters).
         #[arg(long, value_enum, default_value_t = Method::Certified)]
@@ -114,28 +93,8 @@ enum Command {
         /// The direction along which the SVG drawing is projected, x,y,z.
         #[arg(long, allow_hyphen_values = true, default_value = DEMO_DIRECTION)]
         dir: String,
-        /// Write to this file instead of standard output (refused if it exists, unless --force).
-        #[arg(short = 'o', long = "output")]
-        output: Option<PathBuf>,
-        /// Overwrite the output file if it exists.
-        #[arg(long)]
-        force: bool,
-        /// Worker threads (default: all cores).
-        #[arg(long)]
-        threads: Option<usize>,
-        /// How patch boundaries are matched: "exact" or a distance (default as for `info`).
-        #[arg(long, allow_hyphen_values = true)]
-        weld: Option<String>,
-        /// The deepest subdivision (the box side is 2^-depth), 1..=40.
-        #[arg(long, default_value_t = 24)]
-        max_depth: u32,
-        /// Certify the drawing to this distance, relative to the bounding-box diagonal
-        /// (absolute with --abs-tol).
-        #[arg(long, allow_hyphen_values = true)]
-        tol: Option<f64>,
-        /// Read --tol as an absolute distance in model units.
-        #[arg(long)]
-        abs_tol: bool,
+        #[command(flatten)]
+        run: RunArgs,
     },
     /// Re-verifies a silhouette certificate against its model, independently of the solver, in
     /// exact arithmetic. Exit 0: valid; 1: invalid (the first failing item is named).
@@ -157,6 +116,34 @@ enum Command {
         #[arg(long, value_enum, default_value_t = CurveFormat::Text)]
         format: CurveFormat,
     },
+}
+
+/// The options shared by the commands that solve curves on a model.
+#[derive(clap::Args, Debug)]
+struct RunArgs {
+    /// Write to this file instead of standard output (refused if it exists, unless --force).
+    #[arg(short = 'o', long = "output")]
+    output: Option<PathBuf>,
+    /// Overwrite the output file if it exists.
+    #[arg(long)]
+    force: bool,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    threads: Option<usize>,
+    /// How patch boundaries are matched: "exact" or a distance (default as for `info`).
+    #[arg(long, allow_hyphen_values = true)]
+    weld: Option<String>,
+    /// The deepest subdivision (the box side is 2^-depth), 1..=40.
+    #[arg(long, default_value_t = 24)]
+    max_depth: u32,
+    /// Certify the drawing: every segment within this distance of the true curve, relative to
+    /// the bounding-box diagonal (absolute with --abs-tol). Without it the topology is
+    /// certified but the chords are not bounded (and `certified` is false).
+    #[arg(long, allow_hyphen_values = true)]
+    tol: Option<f64>,
+    /// Read --tol as an absolute distance in model units.
+    #[arg(long)]
+    abs_tol: bool,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -275,16 +262,19 @@ where
             dir,
             eye,
             format,
-            output,
-            force,
-            threads,
-            weld,
-            max_depth,
+            run,
             method,
-            tol,
-            abs_tol,
             certificate,
         } => {
+            let RunArgs {
+                output,
+                force,
+                threads,
+                weld,
+                max_depth,
+                tol,
+                abs_tol,
+            } = run;
             check_run_arguments(tol, max_depth, threads)?;
             let view = match (dir, eye) {
                 (Some(d), _) => View::Direction(
@@ -309,21 +299,17 @@ where
             if output.is_some() && output == certificate {
                 return Err(CliError::input("-o and --certificate name the same file"));
             }
-            let name = model.display().to_string();
-            let m = read_model(&model).map_err(|e| CliError::input(e.to_string()))?;
-            let weld = match weld {
-                Some(s) => parse_weld(&s)?,
-                None => default_weld(&m),
-            };
-            let opts = CurveOptions {
-                max_depth,
-                ..CurveOptions::default()
-            };
-            let pool = thread_pool(threads)?;
+            let Loaded {
+                name,
+                model: m,
+                weld,
+                opts,
+                pool,
+                tol_abs,
+            } = load(&model, weld, max_depth, threads, tol, abs_tol)?;
             let start = std::time::Instant::now();
             let (s, report) = match method {
                 Method::Certified => {
-                    let tol_abs = tol.map(|t| if abs_tol { t } else { t * m.diagonal() });
                     let s = pool.install(|| silhouette(&m, &view, &opts, weld, tol_abs));
                     let ms = start.elapsed().as_secs_f64() * 1e3;
                     let r = SilhouetteReport::new(&name, &view, &s, ms, pool.current_num_threads());
@@ -360,14 +346,17 @@ where
             kind,
             format,
             dir,
-            output,
-            force,
-            threads,
-            weld,
-            max_depth,
-            tol,
-            abs_tol,
+            run,
         } => {
+            let RunArgs {
+                output,
+                force,
+                threads,
+                weld,
+                max_depth,
+                tol,
+                abs_tol,
+            } = run;
             check_run_arguments(tol, max_depth, threads)?;
             let projection = View::Direction(
                 parse_vector(&dir).map_err(|e| CliError::input(format!("--dir: {e}")))?,
@@ -378,19 +367,15 @@ where
                 ));
             }
             refuse_overwrite(output.iter(), force)?;
-            let name = model.display().to_string();
-            let m = read_model(&model).map_err(|e| CliError::input(e.to_string()))?;
-            let weld = match weld {
-                Some(s) => parse_weld(&s)?,
-                None => default_weld(&m),
-            };
-            let opts = CurveOptions {
-                max_depth,
-                ..CurveOptions::default()
-            };
-            let pool = thread_pool(threads)?;
+            let Loaded {
+                name,
+                model: m,
+                weld,
+                opts,
+                pool,
+                tol_abs,
+            } = load(&model, weld, max_depth, threads, tol, abs_tol)?;
             let start = std::time::Instant::now();
-            let tol_abs = tol.map(|t| if abs_tol { t } else { t * m.diagonal() });
             let (label, s) = match kind {
                 CurveKind::Parabolic => (
                     "parabolic",
@@ -511,6 +496,45 @@ where
 
 /// A silhouette result as JSON, SVG or text.
 /// A worker pool of `threads` threads (all cores if `None`).
+/// A model read for a curve command, with what the run needs.
+struct Loaded {
+    name: String,
+    model: crate::model::Model,
+    weld: WeldTolerance,
+    opts: CurveOptions,
+    pool: rayon::ThreadPool,
+    /// The tolerance in model units.
+    tol_abs: Option<f64>,
+}
+
+/// Reads the model of a curve command and sets up the run (arguments already checked).
+fn load(
+    path: &std::path::Path,
+    weld: Option<String>,
+    max_depth: u32,
+    threads: Option<usize>,
+    tol: Option<f64>,
+    abs_tol: bool,
+) -> Result<Loaded, CliError> {
+    let model = read_model(path).map_err(|e| CliError::input(e.to_string()))?;
+    let weld = match weld {
+        Some(s) => parse_weld(&s)?,
+        None => default_weld(&model),
+    };
+    let tol_abs = tol.map(|t| if abs_tol { t } else { t * model.diagonal() });
+    Ok(Loaded {
+        name: path.display().to_string(),
+        model,
+        weld,
+        opts: CurveOptions {
+            max_depth,
+            ..CurveOptions::default()
+        },
+        pool: thread_pool(threads)?,
+        tol_abs,
+    })
+}
+
 /// An output error (exit code 1).
 fn w(r: std::io::Result<()>) -> Result<(), CliError> {
     r.map_err(|e| CliError {

@@ -4,7 +4,6 @@
 
 use limn::analysis::silhouette::{silhouette_function, View};
 use limn::bernstein::Bernstein;
-use limn::io::read_model_bytes;
 use limn::model::Format;
 use limn::number::Rational;
 use limn::solver::certificate::{CrossingClaim, CurveCertificate};
@@ -23,12 +22,7 @@ fn dir(x: i64, y: i64, z: i64) -> View {
 }
 
 fn teapot_functions(view: &View) -> Vec<Bernstein<Rational>> {
-    let m = read_model_bytes(
-        "teapot",
-        include_bytes!("../fixtures/bezier/teapot.bpt"),
-        Some(Format::Bpt),
-    )
-    .unwrap();
+    let m = limn::testing::teapot();
     m.patches
         .iter()
         .map(|p| silhouette_function(&p.surface, view))

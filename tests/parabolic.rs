@@ -121,12 +121,7 @@ fn sphere_none_plane_and_cylinder_everywhere() {
 /// The teapot: every patch solved without panic; what is not decided is reported.
 #[test]
 fn teapot_parabolic_curves() {
-    let m = limn::io::read_model_bytes(
-        "teapot",
-        include_bytes!("../fixtures/bezier/teapot.bpt"),
-        Some(Format::Bpt),
-    )
-    .unwrap();
+    let m = limn::testing::teapot();
     let s = solve(&m, Some(1e-6));
     eprintln!(
         "teapot parabolic: {} curves, {} unresolved boxes, {} unjoined edges, {} degenerate",
@@ -149,12 +144,7 @@ fn teapot_parabolic_curves() {
 /// the curve, and the rim's crossings with it are joined to it.
 #[test]
 fn one_sided_parabolic_edges_are_curve() {
-    let m = limn::io::read_model_bytes(
-        "teapot",
-        include_bytes!("../fixtures/bezier/teapot.bpt"),
-        Some(Format::Bpt),
-    )
-    .unwrap();
+    let m = limn::testing::teapot();
     let s = solve(&m, None);
     for patch in 4..8 {
         assert!(
@@ -190,12 +180,7 @@ fn identity_with_the_second_fundamental_form() {
         shapes::torus(&q(3, 1), &q(1, 1))[5].clone(),
         shapes::transform(&shapes::torus(&q(5, 2), &q(1, 1))[2], &rot, &shift),
     ];
-    let teapot = limn::io::read_model_bytes(
-        "teapot",
-        include_bytes!("../fixtures/bezier/teapot.bpt"),
-        Some(Format::Bpt),
-    )
-    .unwrap();
+    let teapot = limn::testing::teapot();
     patches.push(teapot.patches[5].surface.clone());
     for p in &patches {
         let k = parabolic_function(p);

@@ -487,12 +487,7 @@ fn side_on_torus_generic_azimuth_has_four_crossings() {
 /// circles), met by the rest of the curve at exact points; all of it certified.
 #[test]
 fn teapot_axis_views_have_exact_junctions() {
-    let m = limn::io::read_model_bytes(
-        "teapot",
-        include_bytes!("../fixtures/bezier/teapot.bpt"),
-        Some(Format::Bpt),
-    )
-    .unwrap();
+    let m = limn::testing::teapot();
     for (view, junctions) in [(dir(1, 0, 0), 4), (dir(0, 0, 1), 2)] {
         let s = solve(&m, &view);
         assert!(s.unresolved.is_empty(), "{:?}", s.unresolved);
@@ -511,12 +506,7 @@ fn teapot_axis_views_have_exact_junctions() {
 #[test]
 fn teapot_horizontal_views_cross_the_rim_circle() {
     use limn::analysis::silhouette_certificate::{check_silhouette, SilhouetteCertificate};
-    let m = limn::io::read_model_bytes(
-        "teapot",
-        include_bytes!("../fixtures/bezier/teapot.bpt"),
-        Some(Format::Bpt),
-    )
-    .unwrap();
+    let m = limn::testing::teapot();
     for view in [dir(1, 2, 0), dir(2, -1, 0), dir(1, 1, 0), dir(-3, 1, 0)] {
         let s = solve(&m, &view);
         assert!(s.unresolved.is_empty(), "{view:?}: {:?}", s.unresolved);

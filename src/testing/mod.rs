@@ -12,3 +12,20 @@ pub mod shapes;
 pub mod strategies;
 
 pub use arbitrary::ArbitraryPatch;
+
+/// The Newell teapot (32 bicubic patches, the embedded copy of
+/// `fixtures/bezier/teapot.bpt`), the model most tests and benches run on.
+///
+/// # Examples
+/// ```
+/// let teapot = limn::testing::teapot();
+/// assert_eq!(teapot.patches.len(), 32);
+/// ```
+pub fn teapot() -> crate::model::Model {
+    crate::io::read_model_bytes(
+        "teapot",
+        crate::cli::EMBEDDED_TEAPOT.as_bytes(),
+        Some(crate::model::Format::Bpt),
+    )
+    .expect("the embedded teapot parses")
+}
