@@ -413,3 +413,45 @@ fn critical_points_in_undecided_boxes_are_classified() {
     }
     assert!(t.critical.iter().all(|c| c.on_curve == Some(false)));
 }
+
+/// g = (u − 1/2)(u − 1/2 − 4 (v − 1/4)²): the line u = 1/2 and a parabola touching it at
+/// (1/2, 1/4) from one side. The touch point is not a node of the quotient's arcs, so the
+/// junction is reported unresolved there, never certified as two separate components
+/// (found by review).
+#[test]
+fn a_curve_touching_a_zero_line_is_not_certified_apart_from_it() {
+    use limn::solver::lines::solve_curve_lines;
+    let lin = |axis: usize, c: Rational| {
+        let mut d = [0usize; 2];
+        d[axis] = 1;
+        Bernstein::new(&d, vec![Rational::from(-&c), Rational::from(1 - &c)]).unwrap()
+    };
+    let four = Bernstein::new(&[0, 0], vec![q(4, 1)]).unwrap();
+    let h = &lin(0, q(1, 2)) - &(&(&lin(1, q(1, 4)) * &lin(1, q(1, 4))) * &four);
+    let g = &lin(0, q(1, 2)) * &h;
+    let c = solve_curve_lines(&g, &CurveOptions::default());
+    assert_eq!(c.lines.len(), 1);
+    assert!(!c.topology.is_certified());
+    assert!(c.topology.unresolved.iter().all(|u| {
+        let [lo, hi] = u.cell.to_f64();
+        lo[0] <= 0.5 && 0.5 <= hi[0] && lo[1] <= 0.25 && 0.25 <= hi[1]
+    }));
+}
+
+/// A line deep in the dyadic grid costs boxes only where the quotient is not of one sign:
+/// g = (u − 2^-k)(1 + v) stays certified in a few boxes for every k up to the depth budget
+/// (found by review: the forced cut used to split every cell it crossed).
+#[test]
+fn a_deep_zero_line_is_cheap_where_the_quotient_has_a_sign() {
+    use limn::solver::lines::solve_curve_lines;
+    for k in [8u32, 12, 16, 20] {
+        let c = Rational::from((1, 1i64 << k));
+        let line = Bernstein::new(&[1, 0], vec![Rational::from(-&c), Rational::from(1 - &c)]).unwrap();
+        let pos = Bernstein::new(&[0, 1], vec![q(1, 1), q(2, 1)]).unwrap();
+        let s = solve_curve_lines(&(&line * &pos), &CurveOptions::default());
+        assert_eq!(s.lines.len(), 1, "k = {k}");
+        assert!(s.topology.is_certified(), "k = {k}");
+        assert!(s.solved.boxes <= 4, "k = {k}: {} boxes", s.solved.boxes);
+        assert_eq!(s.topology.branches.len(), 1);
+    }
+}

@@ -157,6 +157,9 @@ pub struct CurveTopology {
     pub cells: Vec<Cell>,
     /// Crossings where the curve touches a box edge without ending there (located too).
     pub touches: Vec<CrossingId>,
+    /// Those of them that an arc passes through (the curve touches the edge from inside a
+    /// box): a point of the curve that is not a node of the arc graph.
+    pub passing: Vec<CrossingId>,
     /// Undecided regions.
     pub unresolved: Vec<Unresolved>,
     /// The critical points of g isolated inside the undecided regions, with what is known of
@@ -443,11 +446,9 @@ pub fn solve_curve_cut(
         let cut = cuts
             .iter()
             .any(|&(axis, c)| cell.lo[axis] < c && c < cell.hi[axis]);
-        let (sign, level) = if cut {
-            (Sign::Unknown, None)
-        } else {
-            strict_sign(&coeffs, g, cell, ladder, &mut stats)
-        };
+        // A cell the cut crosses is still excluded by sign (no crossing of the curve with
+        // the cut line can lie in it); otherwise it is split until the line is on its edges.
+        let (sign, level) = strict_sign(&coeffs, g, cell, ladder, &mut stats);
         if sign.is_known() {
             cells.push(Cell {
                 cell,
@@ -542,7 +543,7 @@ pub fn solve_curve_cut(
         out.critical = critical_points(g, &boxes);
         for u in &mut out.unresolved {
             if let Some(cp) = out.critical.iter().find(|cp| cp.in_box(&u.cell)) {
-                u.reason = cp.reason();
+                u.reason = cp.reason(&u.cell);
             }
         }
     }
@@ -597,6 +598,7 @@ pub fn solve_curve_cut(
     out.arcs = arcs;
     out.cells = cells;
     out.touches = touch_ids;
+    out.passing = passed.into_iter().collect();
     out
 }
 

@@ -53,7 +53,8 @@ fn fibre(g: &Bernstein<Rational>, axis: usize, k: usize) -> Bernstein<Rational> 
 }
 
 /// Divides out of `g` the factors of every line `u = c` or `v = c` with dyadic `c` in
-/// (0, 1) on which it vanishes identically, exactly, as many times as each divides.
+/// (0, 1) of denominator at most `2^max_exp` (capped at 2^[`MAX_LINE_EXP`]) on which it
+/// vanishes identically, exactly, as many times as each divides.
 /// Returns the quotient and the lines (sorted).
 ///
 /// The candidates are the dyadic roots of one nonzero fibre (every fibre vanishes at c on
@@ -71,12 +72,16 @@ fn fibre(g: &Bernstein<Rational>, axis: usize, k: usize) -> Bernstein<Rational> 
 /// let half = Rational::from((1, 2));
 /// let lin = Bernstein::new(&[1, 0], vec![-half.clone(), half]).unwrap();
 /// let diag = Bernstein::new(&[1, 1], [-1, 0, 0, 1].map(Rational::from).to_vec()).unwrap();
-/// let (k, lines) = divide_zero_lines(&(&lin * &diag));
+/// let (k, lines) = divide_zero_lines(&(&lin * &diag), 24);
 /// assert_eq!(k, diag);
 /// assert_eq!(lines.len(), 1);
 /// assert_eq!(lines[0].to_string(), "u=1/2");
 /// ```
-pub fn divide_zero_lines(g: &Bernstein<Rational>) -> (Bernstein<Rational>, Vec<ZeroLine>) {
+pub fn divide_zero_lines(
+    g: &Bernstein<Rational>,
+    max_exp: u32,
+) -> (Bernstein<Rational>, Vec<ZeroLine>) {
+    let max_exp = max_exp.min(MAX_LINE_EXP);
     let mut g = g.clone();
     let mut lines = Vec::new();
     if g.is_zero() {
@@ -95,8 +100,8 @@ pub fn divide_zero_lines(g: &Bernstein<Rational>) -> (Bernstein<Rational>, Vec<Z
         if f.degrees()[0] == 0 {
             continue;
         }
-        let roots = isolate_roots(&f, &ladder, MAX_LINE_EXP, &mut stats);
-        let width = (-(MAX_LINE_EXP as f64)).exp2();
+        let roots = isolate_roots(&f, &ladder, max_exp, &mut stats);
+        let width = (-(max_exp as f64)).exp2();
         let mut candidates: Vec<Dyadic> = Vec::new();
         for r in roots.roots {
             if let Root::At { t } = refine_root(&f, r, width, &ladder, &mut stats) {
@@ -104,7 +109,7 @@ pub fn divide_zero_lines(g: &Bernstein<Rational>) -> (Bernstein<Rational>, Vec<Z
             }
         }
         for at in candidates {
-            if at == Dyadic::ZERO || at == Dyadic::ONE {
+            if at == Dyadic::ZERO || at == Dyadic::ONE || at.exp() > max_exp {
                 continue;
             }
             let c = at.to_rational();
@@ -156,7 +161,39 @@ pub fn on_line(
 /// with it and at the points `at` (other lines crossing it), in order along it. Their
 /// isolating intervals are disjoint (distinct roots of the solved polynomial on that line),
 /// and an exact point is never inside another's open interval, so sorting orders them.
+///
+/// Where an arc of the solved curve only touches the line (passing through a point of it
+/// without ending there), that point of the curve is not a node of the arc graph, so the
+/// junction is not represented: the boxes around it are reported unresolved instead.
 pub fn add_line(t: &mut CurveTopology, fixed: usize, c: Dyadic, at: &[Dyadic]) {
+    let passing: Vec<CrossingId> = t
+        .passing
+        .iter()
+        .copied()
+        .filter(|id| on_line(t, id, fixed, c).is_some())
+        .collect();
+    for id in passing {
+        let [lo, hi] = t
+            .locations
+            .get(&id)
+            .copied()
+            .unwrap_or([[0.0; 2], [1.0; 2]]);
+        let cells: Vec<DyadicBox> = t
+            .cells
+            .iter()
+            .map(|cell| cell.cell)
+            .filter(|b| {
+                let [blo, bhi] = b.to_f64();
+                (0..2).all(|k| blo[k] <= hi[k] && lo[k] <= bhi[k])
+            })
+            .collect();
+        for cell in cells {
+            t.unresolved.push(super::curve2::Unresolved {
+                cell,
+                reason: "the curve touches a line or side on which the function vanishes, from one side: the junction there is not resolved".into(),
+            });
+        }
+    }
     let mut nodes: Vec<(Dyadic, Dyadic, CrossingId)> = Vec::new();
     let ids: Vec<CrossingId> = t
         .arcs
@@ -230,7 +267,8 @@ pub struct LinedCurve {
 /// assert!(c.topology.branches.iter().all(|b| b.complete));
 /// ```
 pub fn solve_curve_lines(g: &Bernstein<Rational>, opts: &super::CurveOptions) -> LinedCurve {
-    let (quotient, lines) = divide_zero_lines(g);
+    // A line deeper than the subdivision may go cannot be made a grid line: not divided.
+    let (quotient, lines) = divide_zero_lines(g, opts.max_depth);
     let cuts: Vec<(usize, Dyadic)> = lines.iter().map(|z| (z.axis, z.at)).collect();
     let solved = super::solve_curve_cut(&quotient, &cuts, opts);
     let mut topology = solved.clone();

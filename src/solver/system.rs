@@ -26,7 +26,9 @@ pub struct SystemOptions {
     pub max_depth: u32,
     /// The most boxes examined.
     pub max_boxes: usize,
-    /// Isolated roots are refined (Krawczyk iteration) to enclosures of at most this width.
+    /// Isolated roots are refined toward enclosures of this width (Newton then Krawczyk's
+    /// test, else Krawczyk iteration and bisection); where refinement stalls the enclosure
+    /// stays wider, still proven.
     pub refine_width: f64,
 }
 
