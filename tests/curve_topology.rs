@@ -181,11 +181,74 @@ fn a_node_is_reported_unresolved_not_guessed() {
 
 mod fuzz {
     use super::*;
+    use limn::solver::lines::solve_curve_lines;
+    use limn::solver::{isolate_roots, Ladder, Root};
     use limn::testing::strategies;
     use proptest::prelude::*;
 
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(limn::testing_cases(48)))]
+
+        /// A random polynomial times the factor of a random dyadic line u = c: the line is
+        /// found, and if the result is certified, every root of p(c, ·) in (0, 1) (isolated
+        /// independently) is a junction of three or more arcs at its place on the line, there
+        /// is no other junction off the p-curve crossings, and the crossings lie on the curve.
+        #[test]
+        fn random_polynomials_times_a_line(
+            p in strategies::bernstein(2, 3).prop_filter("bivariate, not vanishing on the line", |p| p.nvars() == 2 && !p.is_zero()),
+            num in 1u64..16,
+        ) {
+            let c = limn::solver::Dyadic::new(num, 4);
+            let cq = c.to_rational();
+            let line = Bernstein::new(&[1, 0], vec![Rational::from(-&cq), Rational::from(1 - &cq)]).unwrap();
+            let on_line: Vec<Rational> = (0..=p.degrees()[1])
+                .map(|j| {
+                    let col: Vec<Rational> = (0..=p.degrees()[0]).map(|i| p.coeff(&[i, j]).clone()).collect();
+                    Bernstein::new(&[col.len() - 1], col).unwrap().eval(std::slice::from_ref(&cq))
+                })
+                .collect();
+            let restricted = Bernstein::new(&[on_line.len() - 1], on_line).unwrap();
+            prop_assume!(!restricted.is_zero());
+            let g = &line * &p;
+            let opts = CurveOptions { max_depth: 12, max_boxes: 20_000, ..CurveOptions::default() };
+            let s = solve_curve_lines(&g, &opts);
+            prop_assert!(s.lines.iter().any(|z| z.axis == 0 && z.at == c), "line not found: {:?}", s.lines);
+            let t = &s.topology;
+            crossings_are_on_the_curve(&g, t);
+            if !t.is_certified() {
+                return Ok(());
+            }
+            let roots = isolate_roots(&restricted, &Ladder::default(), 40, &mut Default::default());
+            prop_assume!(roots.unresolved.is_empty());
+            let mut degree = std::collections::BTreeMap::new();
+            for a in &t.arcs {
+                *degree.entry(a.from).or_insert(0) += 1;
+                *degree.entry(a.to).or_insert(0) += 1;
+            }
+            let cf = c.to_f64();
+            let junctions: Vec<[[f64; 2]; 2]> = degree
+                .iter()
+                .filter(|(_, &d)| d >= 3)
+                .map(|(id, _)| t.locations[id])
+                .collect();
+            let interior: Vec<&Root> = roots
+                .roots
+                .iter()
+                .filter(|r| r.lo() > limn::solver::Dyadic::ZERO && r.hi() < limn::solver::Dyadic::ONE)
+                .collect();
+            for r in &interior {
+                let (lo, hi) = (r.lo().to_f64(), r.hi().to_f64());
+                let found = junctions.iter().any(|[a, b]| {
+                    a[0] <= cf && cf <= b[0] && b[1] >= lo && a[1] <= hi
+                });
+                prop_assert!(found, "root of p(c, .) in [{lo}, {hi}] is no junction: {junctions:?}");
+            }
+            for [a, b] in &junctions {
+                prop_assert!(a[0] <= cf && cf <= b[0], "junction off the line: {a:?} {b:?}");
+            }
+            // A root at an end of the line (on the square's boundary) may be a junction too.
+            prop_assert!(junctions.len() <= roots.roots.len(), "{} junctions for {} roots", junctions.len(), roots.roots.len());
+        }
 
         /// Random and degenerate bivariate polynomials: the solver terminates within its
         /// budget, never panics, every crossing it reports is on the curve, every branch is a
@@ -446,7 +509,8 @@ fn a_deep_zero_line_is_cheap_where_the_quotient_has_a_sign() {
     use limn::solver::lines::solve_curve_lines;
     for k in [8u32, 12, 16, 20] {
         let c = Rational::from((1, 1i64 << k));
-        let line = Bernstein::new(&[1, 0], vec![Rational::from(-&c), Rational::from(1 - &c)]).unwrap();
+        let line =
+            Bernstein::new(&[1, 0], vec![Rational::from(-&c), Rational::from(1 - &c)]).unwrap();
         let pos = Bernstein::new(&[0, 1], vec![q(1, 1), q(2, 1)]).unwrap();
         let s = solve_curve_lines(&(&line * &pos), &CurveOptions::default());
         assert_eq!(s.lines.len(), 1, "k = {k}");
