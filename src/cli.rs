@@ -266,16 +266,7 @@ where
             method,
             certificate,
         } => {
-            let RunArgs {
-                output,
-                force,
-                threads,
-                weld,
-                max_depth,
-                tol,
-                abs_tol,
-            } = run;
-            check_run_arguments(tol, max_depth, threads)?;
+            check_run_arguments(&run)?;
             let view = match (dir, eye) {
                 (Some(d), _) => View::Direction(
                     parse_vector(&d).map_err(|e| CliError::input(format!("--dir: {e}")))?,
@@ -290,13 +281,13 @@ where
                     "--dir: the view direction must not be the zero vector",
                 ));
             }
-            refuse_overwrite(output.iter().chain(&certificate), force)?;
+            refuse_overwrite(run.output.iter().chain(&certificate), run.force)?;
             if certificate.is_some() && method != Method::Certified {
                 return Err(CliError::input(
                     "--certificate: only the certified method proves anything",
                 ));
             }
-            if output.is_some() && output == certificate {
+            if run.output.is_some() && run.output == certificate {
                 return Err(CliError::input("-o and --certificate name the same file"));
             }
             let Loaded {
@@ -306,7 +297,7 @@ where
                 opts,
                 pool,
                 tol_abs,
-            } = load(&model, weld, max_depth, threads, tol, abs_tol)?;
+            } = load(&model, &run)?;
             let start = std::time::Instant::now();
             let (s, report) = match method {
                 Method::Certified => {
@@ -339,7 +330,7 @@ where
                 })?;
             }
             let text = render_silhouette(format, &report, &m, &view, &s)?;
-            write_output(output, &text, out)
+            write_output(run.output, &text, out)
         }
         Command::Curves {
             model,
@@ -348,16 +339,7 @@ where
             dir,
             run,
         } => {
-            let RunArgs {
-                output,
-                force,
-                threads,
-                weld,
-                max_depth,
-                tol,
-                abs_tol,
-            } = run;
-            check_run_arguments(tol, max_depth, threads)?;
+            check_run_arguments(&run)?;
             let projection = View::Direction(
                 parse_vector(&dir).map_err(|e| CliError::input(format!("--dir: {e}")))?,
             );
@@ -366,7 +348,7 @@ where
                     "--dir: the direction must not be the zero vector",
                 ));
             }
-            refuse_overwrite(output.iter(), force)?;
+            refuse_overwrite(run.output.iter(), run.force)?;
             let Loaded {
                 name,
                 model: m,
@@ -374,7 +356,7 @@ where
                 opts,
                 pool,
                 tol_abs,
-            } = load(&model, weld, max_depth, threads, tol, abs_tol)?;
+            } = load(&model, &run)?;
             let start = std::time::Instant::now();
             let (label, s) = match kind {
                 CurveKind::Parabolic => (
@@ -392,7 +374,7 @@ where
                 pool.current_num_threads(),
             );
             let text = render_silhouette(format, &report, &m, &projection, &s)?;
-            write_output(output, &text, out)
+            write_output(run.output, &text, out)
         }
         Command::Check {
             model,
@@ -508,29 +490,24 @@ struct Loaded {
 }
 
 /// Reads the model of a curve command and sets up the run (arguments already checked).
-fn load(
-    path: &std::path::Path,
-    weld: Option<String>,
-    max_depth: u32,
-    threads: Option<usize>,
-    tol: Option<f64>,
-    abs_tol: bool,
-) -> Result<Loaded, CliError> {
+fn load(path: &std::path::Path, run: &RunArgs) -> Result<Loaded, CliError> {
     let model = read_model(path).map_err(|e| CliError::input(e.to_string()))?;
-    let weld = match weld {
-        Some(s) => parse_weld(&s)?,
+    let weld = match &run.weld {
+        Some(s) => parse_weld(s)?,
         None => default_weld(&model),
     };
-    let tol_abs = tol.map(|t| if abs_tol { t } else { t * model.diagonal() });
+    let tol_abs = run
+        .tol
+        .map(|t| if run.abs_tol { t } else { t * model.diagonal() });
     Ok(Loaded {
         name: path.display().to_string(),
         model,
         weld,
         opts: CurveOptions {
-            max_depth,
+            max_depth: run.max_depth,
             ..CurveOptions::default()
         },
-        pool: thread_pool(threads)?,
+        pool: thread_pool(run.threads)?,
         tol_abs,
     })
 }
@@ -544,11 +521,8 @@ fn w(r: std::io::Result<()>) -> Result<(), CliError> {
 }
 
 /// The checks shared by the commands that solve curves.
-fn check_run_arguments(
-    tol: Option<f64>,
-    max_depth: u32,
-    threads: Option<usize>,
-) -> Result<(), CliError> {
+fn check_run_arguments(run: &RunArgs) -> Result<(), CliError> {
+    let (tol, max_depth, threads) = (run.tol, run.max_depth, run.threads);
     if let Some(t) = tol {
         if !(t.is_finite() && t > 0.0) {
             return Err(CliError::input(format!(

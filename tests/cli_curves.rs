@@ -52,7 +52,7 @@ fn svg_output_and_no_overwrite() {
     let path = tmp("teapot-parabolic.svg");
     let _ = std::fs::remove_file(&path);
     let p = path.to_str().unwrap();
-    let (code, _, err) = limn(&[
+    let args = [
         "curves",
         TEAPOT,
         "--kind",
@@ -61,21 +61,13 @@ fn svg_output_and_no_overwrite() {
         "svg",
         "-o",
         p,
-    ]);
+    ];
+    let (code, _, err) = limn(&args);
     assert_eq!(code, Some(0), "{err}");
     let svg = std::fs::read_to_string(&path).unwrap();
     assert!(svg.starts_with("<svg") || svg.starts_with("<?xml"));
     assert!(svg.contains("parabolic curves"));
-    let (code, _, err) = limn(&[
-        "curves",
-        TEAPOT,
-        "--kind",
-        "parabolic",
-        "--format",
-        "svg",
-        "-o",
-        p,
-    ]);
+    let (code, _, err) = limn(&args);
     assert_eq!(code, Some(2));
     assert!(err.contains("not overwritten"), "{err}");
     assert_eq!(std::fs::read_to_string(&path).unwrap(), svg);
