@@ -243,11 +243,19 @@ mod fuzz {
                 });
                 prop_assert!(found, "root of p(c, .) in [{lo}, {hi}] is no junction: {junctions:?}");
             }
+            // Junctions elsewhere come from p's own lines or sides (p may vanish on some);
+            // those on the line are at most its roots (one at an end of the line may be one).
+            let on_line = junctions.iter().filter(|[a, b]| a[0] <= cf && cf <= b[0]).count();
+            prop_assert!(on_line <= roots.roots.len(), "{on_line} junctions for {} roots", roots.roots.len());
+            let other_lines: Vec<_> = s.lines.iter().filter(|z| !(z.axis == 0 && z.at == c)).collect();
             for [a, b] in &junctions {
-                prop_assert!(a[0] <= cf && cf <= b[0], "junction off the line: {a:?} {b:?}");
+                let on_boundary = a[0] == 0.0 || b[0] == 1.0 || a[1] == 0.0 || b[1] == 1.0;
+                let on_other = other_lines.iter().any(|z| {
+                    let x = z.at.to_f64();
+                    a[z.axis] <= x && x <= b[z.axis]
+                });
+                prop_assert!(a[0] <= cf && cf <= b[0] || on_boundary || on_other, "junction off the lines: {a:?} {b:?}");
             }
-            // A root at an end of the line (on the square's boundary) may be a junction too.
-            prop_assert!(junctions.len() <= roots.roots.len(), "{} junctions for {} roots", junctions.len(), roots.roots.len());
         }
 
         /// Random and degenerate bivariate polynomials: the solver terminates within its
@@ -518,4 +526,35 @@ fn a_deep_zero_line_is_cheap_where_the_quotient_has_a_sign() {
         assert!(s.solved.boxes <= 4, "k = {k}: {} boxes", s.solved.boxes);
         assert_eq!(s.topology.branches.len(), 1);
     }
+}
+
+/// Found by the property test in CI: p = u (64 v / 11 − 1) times the line u = 3/8. The curve is
+/// the side u = 0 (g vanishes there), the line u = 3/8 and the line v = 11/64; junctions at
+/// (3/8, 11/64), four arcs, and at (0, 11/64), three arcs; everything else ends on the boundary.
+#[test]
+fn two_lines_and_a_zero_side() {
+    use limn::solver::lines::solve_curve_lines;
+    let p = Bernstein::new(&[1, 1], vec![q(0, 1), q(0, 1), q(-1, 1), q(53, 11)]).unwrap();
+    let line = Bernstein::new(&[1, 0], vec![q(-3, 8), q(5, 8)]).unwrap();
+    let s = solve_curve_lines(&(&line * &p), &CurveOptions::default());
+    assert!(s.topology.is_certified());
+    let names: Vec<String> = s.lines.iter().map(|z| z.to_string()).collect();
+    assert_eq!(names, ["u=3/8", "v=11/64"]);
+    let mut degree = std::collections::BTreeMap::new();
+    for a in &s.topology.arcs {
+        *degree.entry(a.from).or_insert(0) += 1;
+        *degree.entry(a.to).or_insert(0) += 1;
+    }
+    let d = |u: (u64, u32), v: (u64, u32)| {
+        degree
+            .get(&CrossingId::Exact {
+                u: limn::solver::Dyadic::new(u.0, u.1),
+                v: limn::solver::Dyadic::new(v.0, v.1),
+            })
+            .copied()
+    };
+    assert_eq!(d((3, 3), (11, 6)), Some(4));
+    assert_eq!(d((0, 0), (11, 6)), Some(3));
+    assert_eq!(degree.values().filter(|&&x| x >= 3).count(), 2);
+    assert!(s.topology.branches.iter().all(|b| b.complete));
 }
