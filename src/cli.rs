@@ -144,6 +144,12 @@ struct RunArgs {
     /// Read --tol as an absolute distance in model units.
     #[arg(long)]
     abs_tol: bool,
+    /// Stop subdividing after this many seconds of wall time: what is not decided by then is
+    /// reported unresolved, and arcs not yet traced are drawn uncertified. Without it the run
+    /// is bounded by the box and depth budgets only, and its output does not depend on the
+    /// machine's speed.
+    #[arg(long, allow_hyphen_values = true)]
+    time_limit: Option<f64>,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -505,6 +511,9 @@ fn load(path: &std::path::Path, run: &RunArgs) -> Result<Loaded, CliError> {
         weld,
         opts: CurveOptions {
             max_depth: run.max_depth,
+            deadline: run
+                .time_limit
+                .map(|t| std::time::Instant::now() + std::time::Duration::from_secs_f64(t)),
             ..CurveOptions::default()
         },
         pool: thread_pool(run.threads)?,
@@ -523,6 +532,13 @@ fn w(r: std::io::Result<()>) -> Result<(), CliError> {
 /// The checks shared by the commands that solve curves.
 fn check_run_arguments(run: &RunArgs) -> Result<(), CliError> {
     let (tol, max_depth, threads) = (run.tol, run.max_depth, run.threads);
+    if let Some(t) = run.time_limit {
+        if !(0.0..1e9).contains(&t) {
+            return Err(CliError::input(format!(
+                "--time-limit: expected a number of seconds, 0 or more, found {t}"
+            )));
+        }
+    }
     if let Some(t) = tol {
         if !(t.is_finite() && t > 0.0) {
             return Err(CliError::input(format!(

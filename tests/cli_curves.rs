@@ -89,3 +89,36 @@ fn bad_arguments_are_exit_2_with_one_line() {
         assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
     }
 }
+
+/// `--time-limit`: a run that reaches it stops subdividing and reports what is left as
+/// unresolved, naming the limit; nothing is claimed certified. A bad value is exit 2.
+#[test]
+fn a_time_limit_leaves_the_rest_unresolved() {
+    for cmd in [
+        &["curves", TEAPOT, "--kind", "parabolic"][..],
+        &["silhouette", TEAPOT, "--dir", "1,2,3", "--tol", "1e-3"][..],
+    ] {
+        let mut args = cmd.to_vec();
+        args.extend(["--time-limit", "0", "--format", "json"]);
+        let (code, out, err) = limn(&args);
+        assert_eq!(code, Some(0), "{err}");
+        let r: Value = serde_json::from_str(&out).unwrap();
+        assert_eq!(r["topology_certified"], false);
+        assert_eq!(r["certified"], false);
+        let unresolved = r["unresolved"].as_array().unwrap();
+        assert!(!unresolved.is_empty());
+        assert!(unresolved
+            .iter()
+            .all(|u| u["reason"].as_str().unwrap().contains("time limit")));
+    }
+    let (code, _, err) = limn(&[
+        "curves",
+        TEAPOT,
+        "--kind",
+        "parabolic",
+        "--time-limit",
+        "-1",
+    ]);
+    assert_eq!(code, Some(2));
+    assert!(err.contains("--time-limit"), "{err}");
+}

@@ -593,6 +593,7 @@ pub fn model_curves(
         &mut joins,
         &open_boundary,
         accuracy.as_deref().zip(tol),
+        opts.deadline,
     );
     Silhouette {
         curves,
@@ -1111,6 +1112,7 @@ fn chain_model(
     joins: &mut Joins,
     open_boundary: &[(usize, Edge)],
     accuracy: Option<(&[Option<PatchAccuracy>], f64)>,
+    deadline: Option<std::time::Instant>,
 ) -> (Vec<SilhouetteCurve>, Vec<SingularPoint>) {
     let draw: Vec<DrawPatch> = patches.iter().map(|p| DrawPatch::new(p)).collect();
     // The certified traces of all arcs, in parallel (each arc is independent).
@@ -1122,8 +1124,11 @@ fn chain_model(
                 t.arcs
                     .par_iter()
                     .map(|a| {
+                        // Past the time limit, arcs are drawn but not traced (not certified).
+                        let late = deadline.is_some_and(|d| std::time::Instant::now() >= d);
                         acc[p]
                             .as_ref()
+                            .filter(|_| !late)
                             .map(|pa| pa.trace(a, t.locations[&a.from], t.locations[&a.to], tol))
                     })
                     .collect()

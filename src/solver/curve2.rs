@@ -29,6 +29,11 @@ pub struct CurveOptions {
     pub max_boxes: usize,
     /// Crossing intervals are refined to at most this width in parameter space.
     pub refine_width: f64,
+    /// A wall-clock time after which no box is subdivided any more: what is not decided by
+    /// then is reported unresolved ("the time limit was reached"). The output then depends
+    /// on the machine's speed; without a deadline (the default) it does not.
+    #[serde(skip)]
+    pub deadline: Option<std::time::Instant>,
 }
 
 impl Default for CurveOptions {
@@ -38,9 +43,22 @@ impl Default for CurveOptions {
             max_depth: 24,
             max_boxes: 50_000,
             refine_width: 1e-9,
+            deadline: None,
         }
     }
 }
+
+impl CurveOptions {
+    /// Whether the deadline, if any, has passed.
+    pub fn past_deadline(&self) -> bool {
+        self.deadline
+            .is_some_and(|d| std::time::Instant::now() >= d)
+    }
+}
+
+/// The reason given for boxes left undecided because the time limit was reached.
+pub const TIME_LIMIT_REASON: &str =
+    "the time limit was reached before this box was decided (--time-limit)";
 
 /// Where the curve meets a box edge; equal for every box that shares the point.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize)]
@@ -435,6 +453,7 @@ pub fn solve_curve_cut(
 
     // Phase 1: subdivide until every box is excluded, monotone, or out of budget.
     let mut cells: Vec<Cell> = Vec::new();
+    let mut out_of_time: BTreeSet<DyadicBox> = BTreeSet::new();
     let mut stack: Vec<(DyadicBox, u32, Bernstein<Interval>)> =
         vec![(DyadicBox::UNIT, 0, g.convert(Precision::F64))];
     while let Some((cell, depth, coeffs)) = stack.pop() {
@@ -473,11 +492,16 @@ pub fn solve_curve_cut(
             });
             continue;
         }
-        let children = (depth < opts.max_depth && out.boxes + stack.len() < opts.max_boxes)
-            .then(|| cell.split(0))
-            .flatten()
-            .and_then(|(a, b)| Some((a.split(1)?, b.split(1)?)));
+        let timed_out = opts.past_deadline();
+        let children =
+            (depth < opts.max_depth && out.boxes + stack.len() < opts.max_boxes && !timed_out)
+                .then(|| cell.split(0))
+                .flatten()
+                .and_then(|(a, b)| Some((a.split(1)?, b.split(1)?)));
         let Some(((aa, ab), (ba, bb))) = children else {
+            if timed_out {
+                out_of_time.insert(cell);
+            }
             cells.push(Cell {
                 cell,
                 kind: CellKind::Unresolved,
@@ -525,7 +549,17 @@ pub fn solve_curve_cut(
             CellKind::Excluded { .. } => {}
             CellKind::Unresolved => out.unresolved.push(Unresolved {
                 cell: *cell,
-                reason: UNRESOLVED_CELL.to_string(),
+                reason: if out_of_time.contains(cell) {
+                    TIME_LIMIT_REASON
+                } else {
+                    UNRESOLVED_CELL
+                }
+                .to_string(),
+            }),
+            // Past the time limit, monotone boxes are not worked out any more.
+            CellKind::Graph { .. } if opts.past_deadline() => out.unresolved.push(Unresolved {
+                cell: *cell,
+                reason: TIME_LIMIT_REASON.to_string(),
             }),
             CellKind::Graph { m, .. } => match graph_box_arcs(&mut lines, *cell, m, &mut touches) {
                 Ok(mut a) => arcs.append(&mut a),
@@ -538,7 +572,7 @@ pub fn solve_curve_cut(
     }
     // Where the subdivision could not decide, isolate the critical points of g (the
     // candidates for singular points of the curve) and say what they are.
-    if !out.unresolved.is_empty() {
+    if !out.unresolved.is_empty() && !opts.past_deadline() {
         let boxes: Vec<DyadicBox> = out.unresolved.iter().map(|u| u.cell).collect();
         out.critical = critical_points(g, &boxes);
         for u in &mut out.unresolved {
