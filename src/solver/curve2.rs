@@ -277,24 +277,50 @@ fn strict_sign(
 }
 
 /// The polynomial g restricted to the grid line where variable `fixed` is `c`, as a
-/// univariate polynomial in the other variable on [0, 1] (exact).
-fn line_polynomial(g: &Bernstein<Rational>, fixed: usize, c: Dyadic) -> Bernstein<Rational> {
-    let cq = [c.to_rational()];
-    let [m, n] = [g.degrees()[0], g.degrees()[1]];
-    // Evaluate each fibre along `fixed` at c (de Casteljau, exact).
-    let fibre = |k: usize| -> Rational {
-        let values: Vec<Rational> = if fixed == 0 {
-            (0..=m).map(|i| g.coeff(&[i, k]).clone()).collect()
+/// univariate polynomial in the other variable on [0, 1], up to a positive constant factor
+/// (exact). `g_int` is g times the lcm of its denominators (integer coefficients); with
+/// `c = p / q`, each fibre is evaluated by de Casteljau steps `x_i ← (q − p) x_i + p x_{i+1}`
+/// in integers, which multiplies every fibre's value by the same `q^d`: roots and signs are
+/// those of the exact restriction, without a gcd per step.
+fn line_polynomial(g_int: &Bernstein<Rational>, fixed: usize, c: Dyadic) -> Bernstein<Rational> {
+    let cq = c.to_rational();
+    let (p, q) = (cq.numer().clone(), cq.denom().clone());
+    let qp = rug::Integer::from(&q - &p);
+    let [m, n] = [g_int.degrees()[0], g_int.degrees()[1]];
+    let fibre = |k: usize| -> rug::Integer {
+        let mut x: Vec<rug::Integer> = if fixed == 0 {
+            (0..=m)
+                .map(|i| g_int.coeff(&[i, k]).numer().clone())
+                .collect()
         } else {
-            (0..=n).map(|j| g.coeff(&[k, j]).clone()).collect()
+            (0..=n)
+                .map(|j| g_int.coeff(&[k, j]).numer().clone())
+                .collect()
         };
-        let len = values.len() - 1;
-        Bernstein::new(&[len], values)
-            .expect("one variable")
-            .eval(&cq)
+        let d = x.len() - 1;
+        for r in 0..d {
+            for i in 0..d - r {
+                let next = rug::Integer::from(&p * &x[i + 1]);
+                x[i] *= &qp;
+                x[i] += next;
+            }
+        }
+        std::mem::take(&mut x[0])
     };
-    let coeffs: Vec<Rational> = (0..=if fixed == 0 { n } else { m }).map(fibre).collect();
+    let coeffs: Vec<Rational> = (0..=if fixed == 0 { n } else { m })
+        .map(|k| Rational::from(fibre(k)))
+        .collect();
     Bernstein::new(&[coeffs.len() - 1], coeffs).expect("one variable")
+}
+
+/// `g` times the lcm of its coefficients' denominators (a positive constant): integer
+/// coefficients, the same zeros and signs.
+fn integer_multiple(g: &Bernstein<Rational>) -> Bernstein<Rational> {
+    let mut l = rug::Integer::from(1);
+    for c in g.coeffs() {
+        l.lcm_mut(c.denom());
+    }
+    g.scale(&Rational::from(l))
 }
 
 /// What g does on one atomic segment of a grid line.
@@ -311,6 +337,8 @@ enum SegmentRoots {
 /// Lazily computed, shared knowledge about grid lines: breakpoints, point signs, segment roots.
 struct Lines<'a> {
     g: &'a Bernstein<Rational>,
+    /// `g` scaled to integer coefficients ([`integer_multiple`]), for exact line restrictions.
+    g_int: Bernstein<Rational>,
     /// `g` in f64 intervals, derived once from the exact input (the fast path of point signs).
     g_fast: Bernstein<Interval>,
     opts: &'a CurveOptions,
@@ -332,7 +360,7 @@ fn uv(fixed: usize, c: Dyadic, s: Dyadic) -> (Dyadic, Dyadic) {
 
 impl<'a> Lines<'a> {
     fn poly(&mut self, fixed: usize, c: Dyadic) -> &Bernstein<Rational> {
-        let g = self.g;
+        let g = &self.g_int;
         self.polys
             .entry((fixed, c))
             .or_insert_with(|| line_polynomial(g, fixed, c))
@@ -521,6 +549,7 @@ pub fn solve_curve_cut(
 
     // Phase 2: atomic segments. Every leaf's corners cut the grid lines its edges lie on.
     let mut lines = Lines {
+        g_int: integer_multiple(g),
         g_fast: g.convert(Precision::F64),
         g,
         opts,
