@@ -8,8 +8,9 @@ impl Bernstein<Rational> {
     /// lowered while the polynomial is exactly of lower degree there.
     ///
     /// For one fibre of degree d, the candidate of degree d - 1 is `b_0 = c_0`,
-    /// `b_i = (d c_i - i b_{i-1}) / (d - i)`; it is accepted only if elevating it gives `c`
-    /// back exactly, so the result is always the same polynomial.
+    /// `b_i = (d c_i - i b_{i-1}) / (d - i)`; it is accepted only if `b_{d-1} = c_d`, which with
+    /// the recurrence is exactly the condition that elevating it gives `c` back, so the result
+    /// is always the same polynomial.
     pub fn reduce_degree_exact(&self) -> Self {
         let mut p = self.clone();
         for axis in 0..p.nvars {
@@ -53,8 +54,11 @@ impl Bernstein<Rational> {
             }
         }
         let candidate = self.with_degree(axis, d - 1, out);
-        // Accept only if it elevates back exactly (checks every interior coefficient too).
-        (candidate.elevate(axis, 1) == *self).then_some(candidate)
+        // Elevation gives c_i = (i b_{i−1} + (d − i) b_i) / d: the recurrence above solves
+        // exactly these equations for i < d, and the check of c_d = b_{d−1} is the last one,
+        // so the candidate elevates back to the polynomial exactly.
+        debug_assert!(candidate.elevate(axis, 1) == *self);
+        Some(candidate)
     }
 
     /// Divides out the linear factor `t_axis` (`at_one = false`) or `1 − t_axis`
