@@ -166,7 +166,7 @@ pub fn isolate_roots_in(
         p.convert(Precision::F64)
     } else {
         // Restricted exactly, then enclosed: data derived from the exact input.
-        p.restrict(0, &lo.to_rational(), &hi.to_rational())
+        p.restrict_rational(0, &lo.to_rational(), &hi.to_rational())
             .convert(Precision::F64)
     };
     let mut stack: Vec<(Dyadic, Dyadic, u32, Bernstein<Interval>)> = vec![(lo, hi, 0, start)];
@@ -242,7 +242,7 @@ pub fn refine_root(
     };
     let n = p.degrees()[0];
     let mut coeffs: Bernstein<Interval> = p
-        .restrict(0, &lo.to_rational(), &hi.to_rational())
+        .restrict_rational(0, &lo.to_rational(), &hi.to_rational())
         .convert(Precision::F64);
     while hi.to_f64() - lo.to_f64() > width {
         let Some(mid) = lo.midpoint(hi) else { break };
