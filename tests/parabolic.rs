@@ -240,3 +240,22 @@ fn identity_with_the_second_fundamental_form() {
         }
     }
 }
+
+/// The answer does not depend on the thread count (teapot, with a tolerance: joins, ending
+/// edges, lines and traced vertices all the same).
+#[test]
+fn thread_count_does_not_change_the_answer() {
+    let m = limn::testing::teapot();
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| solve(&m, Some(1e-4)))
+    };
+    let (a, b) = (run(1), run(2));
+    assert_eq!(a.curves, b.curves);
+    assert_eq!(a.singular_points, b.singular_points);
+    assert_eq!(a.ending_edges, b.ending_edges);
+    assert_eq!(a.degenerate, b.degenerate);
+}
