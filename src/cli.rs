@@ -498,6 +498,20 @@ struct Loaded {
 /// Reads the model of a curve command and sets up the run (arguments already checked).
 fn load(path: &std::path::Path, run: &RunArgs) -> Result<Loaded, CliError> {
     let model = read_model(path).map_err(|e| CliError::input(e.to_string()))?;
+    if model.patches.is_empty() {
+        let faces: usize = model.meshes.iter().map(|m| m.faces.len()).sum();
+        return Err(CliError::input(if faces > 0 {
+            format!(
+                "{}: a polygon mesh ({faces} faces): silhouettes and curves are computed on Bézier / NURBS patch models only (meshes are not supported yet)",
+                path.display()
+            )
+        } else {
+            format!(
+                "{}: the model has no surface patches to analyse",
+                path.display()
+            )
+        }));
+    }
     let weld = match &run.weld {
         Some(s) => parse_weld(s)?,
         None => default_weld(&model),

@@ -122,3 +122,58 @@ fn a_time_limit_leaves_the_rest_unresolved() {
     assert_eq!(code, Some(2));
     assert!(err.contains("--time-limit"), "{err}");
 }
+
+/// A polygon mesh is not silently reported as having no curves: both curve commands refuse it
+/// (exit 2, one line naming the file and why).
+#[test]
+fn a_mesh_is_refused_not_answered_with_no_curves() {
+    let mesh = "fixtures/meshes/keenan/blub/blub_control_mesh.obj";
+    for args in [
+        &["curves", mesh, "--kind", "parabolic"][..],
+        &["silhouette", mesh, "--dir", "1,2,3"][..],
+    ] {
+        let (code, out, err) = limn(args);
+        assert_eq!(code, Some(2), "{args:?}: {err}");
+        assert!(out.is_empty());
+        assert_eq!(err.trim_end().lines().count(), 1);
+        assert!(err.contains(mesh) && err.contains("mesh"), "{err}");
+    }
+}
+
+/// Every patch fixture: `limn curves --kind parabolic` ends without panic (a time limit keeps
+/// the large IGES models short) and writes well-formed JSON.
+#[test]
+fn parabolic_curves_of_every_patch_fixture() {
+    let mut files = vec![
+        "fixtures/bezier/newell_teaset/teacup".to_string(),
+        "fixtures/bezier/newell_teaset/teaspoon".to_string(),
+    ];
+    for dir in ["fixtures/iges/occt", "fixtures/iges/forIGES"] {
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(dir);
+        for e in std::fs::read_dir(root).unwrap() {
+            let p = e.unwrap().path();
+            if matches!(p.extension().and_then(|x| x.to_str()), Some("igs" | "iges")) {
+                files.push(format!(
+                    "{dir}/{}",
+                    p.file_name().unwrap().to_str().unwrap()
+                ));
+            }
+        }
+    }
+    assert!(files.len() >= 10);
+    for f in &files {
+        let (code, out, err) = limn(&[
+            "curves",
+            f,
+            "--kind",
+            "parabolic",
+            "--time-limit",
+            "1",
+            "--format",
+            "json",
+        ]);
+        assert_eq!(code, Some(0), "{f}: {err}");
+        let r: Value = serde_json::from_str(&out).unwrap_or_else(|e| panic!("{f}: {e}"));
+        assert_eq!(r["kind"], "parabolic", "{f}");
+    }
+}
