@@ -2,6 +2,7 @@
 
 pub mod accuracy;
 pub mod baseline;
+pub mod model_curves;
 pub mod parabolic;
 pub mod render;
 pub mod silhouette;

@@ -9,7 +9,7 @@
 //! `k = L'N' − M'² = W⁸ (LN − M²)` for `L = S_uu · (S_u × S_v)` etc., so k has the sign of the
 //! Gaussian curvature wherever the patch is regular (`proofs/parabolic.md`).
 
-use super::silhouette::{model_curves, CurveRules, Silhouette};
+use super::model_curves::{model_curves, CurveRules, Silhouette};
 use crate::bernstein::Bernstein;
 use crate::model::{Model, WeldTolerance};
 use crate::number::Rational;

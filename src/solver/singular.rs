@@ -96,7 +96,7 @@ fn clusters(boxes: &[DyadicBox]) -> Vec<DyadicBox> {
 
 /// The critical points of g inside the given boxes (each found once), classified. The boxes
 /// are searched by clusters (the bounding box of each group of touching boxes), at most
-/// [`MAX_CLUSTERS`] of them, each within the system solver's budget.
+/// `MAX_CLUSTERS` (32) of them, each within the system solver's budget.
 pub fn critical_points(g: &Bernstein<Rational>, boxes: &[DyadicBox]) -> Vec<CriticalPoint> {
     let (gu, gv) = (g.deriv(0), g.deriv(1));
     let opts = SystemOptions {
