@@ -2,8 +2,10 @@
 
 pub mod accuracy;
 pub mod baseline;
+pub mod facing;
 pub mod model_curves;
 pub mod parabolic;
+pub mod projection;
 pub mod render;
 pub mod silhouette;
 pub mod silhouette_certificate;
