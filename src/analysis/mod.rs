@@ -6,6 +6,7 @@ pub mod facing;
 pub mod model_curves;
 pub mod parabolic;
 pub mod projection;
+pub mod ray;
 pub mod render;
 pub mod silhouette;
 pub mod silhouette_certificate;

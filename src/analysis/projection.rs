@@ -338,11 +338,8 @@ mod tests {
                 View::Direction(_) => Rational::from(1),
                 View::Eye(_) => want_depth.clone(),
             };
-            assert_eq!(
-                Rational::from(im.x.eval(&at) / &q),
-                Rational::from(&want_x / &scale)
-            );
-            assert_eq!(Rational::from(im.depth.eval(&at) / &w), want_depth);
+            assert_eq!(im.x.eval(&at) / &q, Rational::from(&want_x / &scale));
+            assert_eq!(im.depth.eval(&at) / &w, want_depth);
         }
     }
 
@@ -362,7 +359,7 @@ mod tests {
         for edge in Edge::ALL {
             let s = side_restriction(&x, edge);
             assert_eq!(
-                s.eval(&[t.clone()]),
+                s.eval(std::slice::from_ref(&t)),
                 x.eval(&side_point(edge, &t)),
                 "{edge:?}"
             );

@@ -180,6 +180,18 @@ impl Interval {
         lo_ok && hi_ok
     }
 
+    /// `1 / x` for every x in the interval, or `None` if it contains 0 (outward: IEEE
+    /// division is correctly rounded, so one step outward from each quotient encloses it).
+    pub fn recip(&self) -> Option<Interval> {
+        if self.lo > 0.0 || self.hi < 0.0 {
+            let lo = (1.0 / self.hi).next_down();
+            let hi = (1.0 / self.lo).next_up();
+            (lo.is_finite() && hi.is_finite()).then_some(Interval { lo, hi })
+        } else {
+            None
+        }
+    }
+
     /// The smallest interval containing both.
     pub fn hull(&self, other: &Interval) -> Interval {
         Interval {

@@ -50,6 +50,17 @@ impl Dyadic {
         d
     }
 
+    /// The dyadic equal to an exact rational in [0, 1] with a power-of-two denominator of
+    /// exponent at most `MAX_DEPTH`, or `None`.
+    pub fn from_rational(q: &Rational) -> Option<Dyadic> {
+        let den = q.denom();
+        if *q < 0 || *q > 1 || !den.is_power_of_two() {
+            return None;
+        }
+        let exp = den.significant_bits() - 1;
+        (exp <= MAX_DEPTH).then(|| Dyadic::new(q.numer().to_u64().expect("at most 2^60"), exp))
+    }
+
     /// The numerator over `2^exp` at a common exponent.
     fn at(self, exp: u32) -> u64 {
         self.num << (exp - self.exp)

@@ -445,9 +445,12 @@ pub fn solve_system(
                 .push(lo.iter().zip(&hi).map(|(a, b)| [*a, *b]).collect());
             continue;
         }
-        // Split every axis at its midpoint: 2^n children.
+        // Split at their midpoints the axes at least half as wide as the widest (all of them
+        // on a cube: 2^n children); a thin axis is not split further until the others catch
+        // up, so a domain with one very narrow variable costs no more than one without it.
+        let widest = lo.iter().zip(&hi).map(|(a, b)| b - a).fold(0.0, f64::max);
         let mut children: Vec<(DyadicBoxN, Vec<Bernstein<Interval>>)> = vec![(bx.clone(), polys)];
-        for axis in 0..n {
+        for axis in (0..n).filter(|&a| hi[a] - lo[a] >= widest / 2.0) {
             let mut next = Vec::with_capacity(children.len() * 2);
             for (b, ps) in children {
                 let Some(mid) = b[axis].0.midpoint(b[axis].1) else {

@@ -1,0 +1,855 @@
+//! Certified ray tests: how many surface layers lie in front of a point of a model, along the
+//! viewing ray through it (its quantitative invisibility, QI).
+//!
+//! For a sample point `p` and each patch `j` whose image box and depth range can meet the ray,
+//! the points of `j` with the image of `p` are the roots of the square system
+//! `x_j q_p − x_p q_j = 0`, `y_j q_p − y_p q_j = 0` (see [`super::projection`]), isolated by
+//! the certified system solver ([`crate::solver::solve_system`], `proofs/krawczyk.md`); each
+//! root is in front of `p` by the certified sign of `depth_j w_p − depth_p w_j` on its
+//! enclosure. The count is proven when every root is isolated, lies strictly inside its
+//! domain (a ray through a patch edge would be counted on both patches), and has a strict
+//! depth sign. Otherwise the sample is refused with the reason, and the caller tries another.
+//!
+//! The sheets that carry `p` itself (its own patch, and the patch across a shared side) have
+//! `p` as a root at depth zero. That root is excluded by a box around it that provably holds
+//! no other point with the same image (`proofs/ray-count.md`):
+//! - where the image map is a local diffeomorphism, a box on which its interval Jacobian is
+//!   regular (the map is injective there);
+//! - at a silhouette point, a box on which the fold lemma holds: with rotated image
+//!   coordinates `(κ, η)`, `∂κ/∂u` and `∂κ/∂v` keep their signs and `η` is strictly convex
+//!   along the level curves of `κ`; then the fibre of every fold point in the box is that
+//!   point alone.
+//!
+//! The rest of the domain is the union of up to four boxes around the excluded one, each
+//! solved on its own.
+
+use super::projection::{lift, side_point, ImagePolys, Projection, ProjectionError};
+use super::silhouette::View;
+use crate::bernstein::Bernstein;
+use crate::model::{Model, PatchAdjacency, WeldTolerance};
+use crate::number::{Interval, Number, Precision, Rational};
+use crate::solver::dyadic::Dyadic;
+use crate::solver::system::{solve_system, DyadicBoxN, SystemOptions};
+use crate::surface::Edge;
+
+type Poly = Bernstein<Rational>;
+
+/// Image bounds of a patch, outward in `f64`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ImageBounds {
+    /// Range of the first image coordinate.
+    pub x: [f64; 2],
+    /// Range of the second image coordinate.
+    pub y: [f64; 2],
+    /// Range of the depth.
+    pub depth: [f64; 2],
+}
+
+impl ImageBounds {
+    /// Whether two bounds can overlap in the image.
+    pub fn meets_image(&self, o: &ImageBounds) -> bool {
+        self.x[0] <= o.x[1] && o.x[0] <= self.x[1] && self.y[0] <= o.y[1] && o.y[0] <= self.y[1]
+    }
+}
+
+/// Outward bounds of `num / den` over the domain of Bernstein polynomials of equal degrees
+/// with `den`'s coefficients positive (the rational convex-hull property).
+pub fn ratio_bounds(num: &Poly, den: &Poly) -> [f64; 2] {
+    let (num, den) = same_degrees(num, den);
+    let mut lo = f64::INFINITY;
+    let mut hi = f64::NEG_INFINITY;
+    for (n, d) in num.coeffs().iter().zip(den.coeffs()) {
+        let r = Rational::from(n / d);
+        lo = lo.min(r.lower_f64());
+        hi = hi.max(r.upper_f64());
+    }
+    [lo, hi]
+}
+
+/// Both polynomials at their common degrees.
+fn same_degrees(a: &Poly, b: &Poly) -> (Poly, Poly) {
+    let deg: Vec<usize> = a
+        .degrees()
+        .iter()
+        .zip(b.degrees())
+        .map(|(x, y)| *x.max(y))
+        .collect();
+    (a.elevate_to(&deg), b.elevate_to(&deg))
+}
+
+/// A model seen in one view: the exact image polynomials of every patch and what the ray
+/// tests need of them.
+#[derive(Clone, Debug)]
+pub struct Scene {
+    /// The image frame.
+    pub projection: Projection,
+    /// Per patch, its image polynomials in (u, v).
+    pub images: Vec<ImagePolys>,
+    /// Per patch, outward image and depth bounds.
+    pub bounds: Vec<ImageBounds>,
+    /// Per patch, the numerators of the rows of the image map's Jacobian:
+    /// `[[x_u q − x q_u, x_v q − x q_v], [y_u q − y q_u, y_v q − y q_v]]`.
+    pub jacobians: Vec<[[Poly; 2]; 2]>,
+    /// Which patch sides are the same edge.
+    pub adjacency: PatchAdjacency,
+}
+
+impl Scene {
+    /// Sets up a model and a view.
+    ///
+    /// # Errors
+    /// As [`Projection::new`].
+    pub fn new(model: &Model, view: &View, weld: WeldTolerance) -> Result<Scene, ProjectionError> {
+        let projection = Projection::new(model, view)?;
+        let images: Vec<ImagePolys> = model
+            .patches
+            .iter()
+            .map(|p| projection.image(&p.surface))
+            .collect();
+        let bounds = images
+            .iter()
+            .map(|im| ImageBounds {
+                x: ratio_bounds(&im.x, &im.q),
+                y: ratio_bounds(&im.y, &im.q),
+                depth: ratio_bounds(&im.depth, &im.w),
+            })
+            .collect();
+        let jacobians = images
+            .iter()
+            .map(|im| {
+                let row = |f: &Poly| [0, 1].map(|a| &(&f.deriv(a) * &im.q) - &(f * &im.q.deriv(a)));
+                [row(&im.x), row(&im.y)]
+            })
+            .collect();
+        let surfaces: Vec<_> = model.patches.iter().map(|p| &p.surface).collect();
+        let adjacency = PatchAdjacency::of_patches(&surfaces, weld);
+        Ok(Scene {
+            projection,
+            images,
+            bounds,
+            jacobians,
+            adjacency,
+        })
+    }
+
+    /// The other patch sides that are the same edge as `(patch, edge)`, with whether each
+    /// runs opposite to it.
+    pub fn twins(&self, patch: usize, edge: Edge) -> Vec<(usize, Edge, bool)> {
+        for users in &self.adjacency.edges {
+            if let Some(me) = users.iter().find(|s| s.patch == patch && s.edge == edge) {
+                return users
+                    .iter()
+                    .filter(|s| !(s.patch == patch && s.edge == edge))
+                    .map(|s| (s.patch, s.edge, s.reversed != me.reversed))
+                    .collect();
+            }
+        }
+        Vec::new()
+    }
+}
+
+/// A point whose QI is wanted.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Sample {
+    /// The point of a patch at exact dyadic parameters, not on its silhouette.
+    Exact {
+        /// The patch.
+        patch: usize,
+        /// Its parameters.
+        uv: [Rational; 2],
+    },
+    /// The silhouette point of a patch on the line `axis = at`, the other parameter being the
+    /// only root of the silhouette function on that line in `[lo, hi]`.
+    Silhouette {
+        /// The patch.
+        patch: usize,
+        /// The fixed parameter (0: u, 1: v).
+        axis: usize,
+        /// Its value (dyadic).
+        at: Rational,
+        /// The isolating interval of the free parameter (dyadic ends).
+        interval: [Rational; 2],
+        /// The silhouette function of the patch.
+        g: Poly,
+    },
+}
+
+/// Budgets of a ray test.
+#[derive(Clone, Debug)]
+pub struct RayOptions {
+    /// Budgets of each system solve.
+    pub system: SystemOptions,
+}
+
+impl Default for RayOptions {
+    fn default() -> Self {
+        RayOptions {
+            system: SystemOptions {
+                max_depth: 24,
+                max_boxes: 4_000,
+                refine_width: 1e-12,
+            },
+        }
+    }
+}
+
+/// A univariate polynomial: `p` with variable `axis` fixed at `at`.
+pub fn fix_axis(p: &Poly, axis: usize, at: &Rational) -> Poly {
+    let r = p.restrict_rational(axis, at, at);
+    let [m, n] = [r.degrees()[0], r.degrees()[1]];
+    let coeffs: Vec<Rational> = if axis == 0 {
+        (0..=n).map(|j| r.coeff(&[0, j]).clone()).collect()
+    } else {
+        (0..=m).map(|i| r.coeff(&[i, 0]).clone()).collect()
+    };
+    let deg = if axis == 0 { n } else { m };
+    Bernstein::new(&[deg], coeffs).expect("a line of a patch")
+}
+
+/// The point's image polynomials in its own free variables (none for an exact point: then
+/// constants), the box of those variables, and its constraints.
+struct PointSystem {
+    /// Number of free variables (0 or 1).
+    nvars: usize,
+    /// Image polynomials in the free variables (constant polynomials in 1 variable if none).
+    image: ImagePolys,
+    /// The free variables' box.
+    domain: DyadicBoxN,
+    /// Constraints on the free variables (the silhouette function on the line).
+    constraints: Vec<Poly>,
+}
+
+fn dy(q: &Rational) -> Option<Dyadic> {
+    Dyadic::from_rational(q)
+}
+
+impl Sample {
+    /// The patch the sample lies on.
+    pub fn patch(&self) -> usize {
+        match self {
+            Sample::Exact { patch, .. } | Sample::Silhouette { patch, .. } => *patch,
+        }
+    }
+
+    fn system(&self, scene: &Scene) -> Option<PointSystem> {
+        let im = &scene.images[self.patch()];
+        match self {
+            Sample::Exact { uv, .. } => {
+                let c = |p: &Poly| Bernstein::constant(1, p.eval(uv));
+                Some(PointSystem {
+                    nvars: 0,
+                    image: ImagePolys {
+                        x: c(&im.x),
+                        y: c(&im.y),
+                        q: c(&im.q),
+                        depth: c(&im.depth),
+                        w: c(&im.w),
+                    },
+                    domain: Vec::new(),
+                    constraints: Vec::new(),
+                })
+            }
+            Sample::Silhouette {
+                axis,
+                at,
+                interval,
+                g,
+                ..
+            } => {
+                let f = |p: &Poly| fix_axis(p, *axis, at);
+                let whole = ImagePolys {
+                    x: f(&im.x),
+                    y: f(&im.y),
+                    q: f(&im.q),
+                    depth: f(&im.depth),
+                    w: f(&im.w),
+                };
+                Some(PointSystem {
+                    nvars: 1,
+                    image: whole,
+                    domain: vec![(dy(&interval[0])?, dy(&interval[1])?)],
+                    constraints: vec![f(g)],
+                })
+            }
+        }
+    }
+}
+
+/// The QI of a sample point, proven: the number of surface layers strictly in front of it on
+/// its viewing ray.
+///
+/// # Errors
+/// Why the count is not proven (the caller may try another sample): a ray through a patch
+/// edge or tangent to a patch, a point whose own sheet could not be excluded, a budget.
+pub fn layers_in_front(scene: &Scene, sample: &Sample, opts: &RayOptions) -> Result<usize, String> {
+    let ps = sample
+        .system(scene)
+        .ok_or("the sample's parameters are not dyadic")?;
+    let own = sample.patch();
+    // The sample's depth range and image box, to skip patches that cannot be in front.
+    let pb = point_bounds(&ps);
+    let mut count = 0;
+    for (j, jb) in scene.bounds.iter().enumerate() {
+        if !jb.meets_image(&pb) || jb.depth[0] > pb.depth[1] {
+            continue;
+        }
+        // Parameters of the sheets through the sample on this patch, each to be excluded.
+        let mut exclude: Vec<DyadicBoxN> = Vec::new();
+        match sample {
+            Sample::Exact { uv, .. } => {
+                let mut carriers: Vec<[Rational; 2]> = Vec::new();
+                if j == own {
+                    carriers.push(uv.clone());
+                }
+                if j != own {
+                    for (edge, t) in sides_through(uv) {
+                        for (tp, te, rev) in scene.twins(own, edge) {
+                            if tp == j {
+                                let t2 = if rev {
+                                    Rational::from(1) - &t
+                                } else {
+                                    t.clone()
+                                };
+                                carriers.push(side_point(te, &t2));
+                            }
+                        }
+                    }
+                }
+                for c in carriers {
+                    exclude.push(injective_box(scene, j, &c).ok_or_else(|| {
+                        format!("the point's own sheet on patch {j} is not excluded (the image map is not provably injective near it)")
+                    })?);
+                }
+            }
+            Sample::Silhouette {
+                axis, at, interval, ..
+            } => {
+                if j == own {
+                    exclude.push(fold_box(scene, j, *axis, at, interval).ok_or_else(|| {
+                        format!(
+                            "the fold lemma does not hold near the silhouette point on patch {j}"
+                        )
+                    })?);
+                }
+            }
+        }
+        count += hits_in_front(scene, &ps, j, &exclude, opts)?;
+    }
+    Ok(count)
+}
+
+/// The sides of the square through a parameter point, with the side parameter.
+fn sides_through(uv: &[Rational; 2]) -> Vec<(Edge, Rational)> {
+    let mut out = Vec::new();
+    let (zero, one) = (Rational::new(), Rational::from(1));
+    if uv[1] == zero {
+        out.push((Edge::V0, uv[0].clone()));
+    }
+    if uv[1] == one {
+        out.push((Edge::V1, uv[0].clone()));
+    }
+    if uv[0] == zero {
+        out.push((Edge::U0, uv[1].clone()));
+    }
+    if uv[0] == one {
+        out.push((Edge::U1, uv[1].clone()));
+    }
+    out
+}
+
+fn point_bounds(ps: &PointSystem) -> ImageBounds {
+    ImageBounds {
+        x: ratio_bounds(&ps.image.x, &ps.image.q),
+        y: ratio_bounds(&ps.image.y, &ps.image.q),
+        depth: ratio_bounds(&ps.image.depth, &ps.image.w),
+    }
+}
+
+/// The hits of patch `j` in front of the point, outside the excluded boxes.
+fn hits_in_front(
+    scene: &Scene,
+    ps: &PointSystem,
+    j: usize,
+    exclude: &[DyadicBoxN],
+    opts: &RayOptions,
+) -> Result<usize, String> {
+    let n = ps.nvars + 2;
+    let pim = &ps.image;
+    let jim = &scene.images[j];
+    let lp = |p: &Poly| {
+        if ps.nvars == 0 {
+            Bernstein::constant(n, p.coeffs()[0].clone())
+        } else {
+            lift(p, n, 0)
+        }
+    };
+    let lj = |p: &Poly| lift(p, n, ps.nvars);
+    let eq_x = &(&lj(&jim.x) * &lp(&pim.q)) - &(&lp(&pim.x) * &lj(&jim.q));
+    let eq_y = &(&lj(&jim.y) * &lp(&pim.q)) - &(&lp(&pim.y) * &lj(&jim.q));
+    let front = &(&lj(&jim.depth) * &lp(&pim.w)) - &(&lp(&pim.depth) * &lj(&jim.w));
+    let mut square = vec![eq_x, eq_y];
+    square.extend(ps.constraints.iter().map(|c| lift(c, n, 0)));
+    let front_i: Bernstein<Interval> = front.convert(Precision::F64);
+    let mut count = 0;
+    for piece in complement(exclude) {
+        let mut domain = ps.domain.clone();
+        domain.extend(piece);
+        let r = solve_system(&square, &[], &domain, &opts.system);
+        if !r.unresolved.is_empty() {
+            return Err(format!(
+                "the ray meets patch {j} where its intersections are not isolated (tangent to the patch, or a budget)"
+            ));
+        }
+        for root in &r.roots {
+            if !root.inside {
+                return Err(format!(
+                    "the ray passes within {:.1e} of the boundary of patch {j} (or of an excluded box)",
+                    root.enclosure.iter().map(|e| e[1] - e[0]).fold(0.0, f64::max)
+                ));
+            }
+            let lo: Vec<Interval> = root
+                .enclosure
+                .iter()
+                .map(|e| Interval::point(e[0]))
+                .collect();
+            let hi: Vec<Interval> = root
+                .enclosure
+                .iter()
+                .map(|e| Interval::point(e[1]))
+                .collect();
+            let on = front_i.restrict_box(&lo, &hi);
+            let c = on.coeffs();
+            if c.iter().all(|x| x.hi() < 0.0) {
+                count += 1;
+            } else if !c.iter().all(|x| x.lo() > 0.0) {
+                return Err(format!(
+                    "the ray meets patch {j} at the depth of the point (the point may lie on patch {j})"
+                ));
+            }
+        }
+    }
+    Ok(count)
+}
+
+/// The unit square less a union of boxes, as boxes. Only one excluded box is supported per
+/// patch except when they are disjoint in one axis...: the general case is done by cutting
+/// the square along every excluded box's bounds and keeping the grid cells outside them.
+fn complement(exclude: &[DyadicBoxN]) -> Vec<DyadicBoxN> {
+    let mut cuts: [Vec<Dyadic>; 2] = [
+        vec![Dyadic::ZERO, Dyadic::ONE],
+        vec![Dyadic::ZERO, Dyadic::ONE],
+    ];
+    for b in exclude {
+        for (a, cut) in cuts.iter_mut().enumerate() {
+            cut.push(b[a].0);
+            cut.push(b[a].1);
+        }
+    }
+    for c in cuts.iter_mut() {
+        c.sort();
+        c.dedup();
+    }
+    let mut out = Vec::new();
+    for u in cuts[0].windows(2) {
+        for v in cuts[1].windows(2) {
+            let cell = vec![(u[0], u[1]), (v[0], v[1])];
+            let inside = exclude
+                .iter()
+                .any(|b| (0..2).all(|a| b[a].0 <= cell[a].0 && cell[a].1 <= b[a].1));
+            if !inside {
+                out.push(cell);
+            }
+        }
+    }
+    out
+}
+
+/// The interval range of a polynomial on a box given by f64 bounds.
+fn range_on(p: &Bernstein<Interval>, lo: &[f64], hi: &[f64]) -> Interval {
+    let l: Vec<Interval> = lo.iter().map(|x| Interval::point(*x)).collect();
+    let h: Vec<Interval> = hi.iter().map(|x| Interval::point(*x)).collect();
+    let r = p.restrict_box(&l, &h);
+    let c = r.coeffs();
+    c[1..].iter().fold(c[0], |a, b| a.hull(b))
+}
+
+/// Boxes `[c − 2^-k, c + 2^-k] ∩ [0, 1]` around a dyadic parameter point, coarse to fine.
+fn boxes_around(lo: &[Rational; 2], hi: &[Rational; 2]) -> Vec<DyadicBoxN> {
+    let mut out = Vec::new();
+    for k in 3..=22u32 {
+        let mut r = Rational::from(1);
+        r >>= k;
+        let clamp = |x: Rational| -> Rational {
+            if x < 0 {
+                Rational::new()
+            } else if x > 1 {
+                Rational::from(1)
+            } else {
+                x
+            }
+        };
+        let b: Option<DyadicBoxN> = (0..2)
+            .map(|a| {
+                let l = clamp(Rational::from(&lo[a] - &r));
+                let h = clamp(Rational::from(&hi[a] + &r));
+                Some((dy(&l)?, dy(&h)?))
+            })
+            .collect();
+        if let Some(b) = b {
+            out.push(b);
+        }
+    }
+    out
+}
+
+fn f64_box(b: &DyadicBoxN) -> (Vec<f64>, Vec<f64>) {
+    (
+        b.iter().map(|d| d.0.to_f64()).collect(),
+        b.iter().map(|d| d.1.to_f64()).collect(),
+    )
+}
+
+/// A box around `c` on which the image map of patch `j` is injective (its interval Jacobian
+/// is regular: by the mean value theorem, `F(w₁) − F(w₂) = M (w₁ − w₂)` with the rows of M
+/// gradients of the image coordinates at points of the segment, and each row a positive
+/// multiple of a row of the numerator Jacobian), or `None`.
+pub fn injective_box(scene: &Scene, j: usize, c: &[Rational; 2]) -> Option<DyadicBoxN> {
+    let jac: Vec<Bernstein<Interval>> = scene.jacobians[j]
+        .iter()
+        .flatten()
+        .map(|p| p.convert(Precision::F64))
+        .collect();
+    for b in boxes_around(c, c) {
+        let (lo, hi) = f64_box(&b);
+        let r: Vec<Interval> = jac.iter().map(|p| range_on(p, &lo, &hi)).collect();
+        let det = r[0].mul(&r[3]).sub(&r[1].mul(&r[2]));
+        if det.lo() > 0.0 || det.hi() < 0.0 {
+            return Some(b);
+        }
+    }
+    None
+}
+
+/// The jet of `k / q` from the jets of `k` and `q` (q > 0), by differentiating `k = f q`.
+fn quotient_jet(k: &[Interval; 6], q: &[Interval; 6]) -> Option<[Interval; 6]> {
+    let iq = q[0].recip()?;
+    let f = k[0].mul(&iq);
+    let fu = k[1].sub(&f.mul(&q[1])).mul(&iq);
+    let fv = k[2].sub(&f.mul(&q[2])).mul(&iq);
+    let two = Interval::point(2.0);
+    let fuu = k[3]
+        .sub(&two.mul(&fu).mul(&q[1]))
+        .sub(&f.mul(&q[3]))
+        .mul(&iq);
+    let fuv = k[4]
+        .sub(&fu.mul(&q[2]))
+        .sub(&fv.mul(&q[1]))
+        .sub(&f.mul(&q[4]))
+        .mul(&iq);
+    let fvv = k[5]
+        .sub(&two.mul(&fv).mul(&q[2]))
+        .sub(&f.mul(&q[5]))
+        .mul(&iq);
+    Some([f, fu, fv, fuu, fuv, fvv])
+}
+
+fn strict(i: &Interval) -> bool {
+    i.lo() > 0.0 || i.hi() < 0.0
+}
+
+/// A box around the silhouette point of patch `j` on the line `axis = at` (free parameter in
+/// `interval`) on which the fold lemma holds (`proofs/ray-count.md`), or `None`.
+pub fn fold_box(
+    scene: &Scene,
+    j: usize,
+    axis: usize,
+    at: &Rational,
+    interval: &[Rational; 2],
+) -> Option<DyadicBoxN> {
+    let im = &scene.images[j];
+    let mut lo = [at.clone(), at.clone()];
+    let mut hi = [at.clone(), at.clone()];
+    lo[1 - axis] = interval[0].clone();
+    hi[1 - axis] = interval[1].clone();
+    // The image direction along which the outline runs, approximately: the image of the
+    // kernel's complement, i.e. a nonzero row direction of the Jacobian at the point. The
+    // lemma is proven for whatever rotation is chosen; a good one only makes it succeed.
+    let mid: Vec<Rational> = (0..2)
+        .map(|a| {
+            let mut m = Rational::from(&lo[a] + &hi[a]);
+            m >>= 1u32;
+            m
+        })
+        .collect();
+    let jac = &scene.jacobians[j];
+    let g = |p: &Poly| p.eval(&mid).to_f64();
+    // Columns of the Jacobian: the images of ∂/∂u and ∂/∂v; at a fold they are parallel to
+    // the outline tangent (the image of the Jacobian is one-dimensional).
+    let cu = [g(&jac[0][0]), g(&jac[1][0])];
+    let cv = [g(&jac[0][1]), g(&jac[1][1])];
+    let t = if cu[0].hypot(cu[1]) >= cv[0].hypot(cv[1]) {
+        cu
+    } else {
+        cv
+    };
+    let norm = t[0].hypot(t[1]);
+    if norm.is_nan() || norm <= 0.0 {
+        return None;
+    }
+    let r = |x: f64| Rational::from_f64((x / norm * 1024.0).round() / 1024.0).unwrap_or_default();
+    let (tx, ty) = (r(t[0]), r(t[1]));
+    if tx == 0 && ty == 0 {
+        return None;
+    }
+    // κ along the outline, η across it.
+    let kappa = &im.x.scale(&tx) + &im.y.scale(&ty);
+    let eta = &im.y.scale(&tx) - &im.x.scale(&ty);
+    let polys = FoldPolys::new(&kappa, &eta, &im.q);
+    boxes_around(&lo, &hi).into_iter().find(|b| {
+        let (blo, bhi) = f64_box(b);
+        fold_signs(&polys, &blo, &bhi, 3).is_some()
+    })
+}
+
+/// κ, η, q and their first and second partial derivatives, in interval form.
+struct FoldPolys {
+    kappa: [Bernstein<Interval>; 6],
+    eta: [Bernstein<Interval>; 6],
+    q: [Bernstein<Interval>; 6],
+}
+
+impl FoldPolys {
+    fn new(kappa: &Poly, eta: &Poly, q: &Poly) -> FoldPolys {
+        let all = |p: &Poly| -> [Bernstein<Interval>; 6] {
+            let (pu, pv) = (p.deriv(0), p.deriv(1));
+            [
+                p.clone(),
+                pu.clone(),
+                pv.clone(),
+                pu.deriv(0),
+                pu.deriv(1),
+                pv.deriv(1),
+            ]
+            .map(|x| x.convert(Precision::F64))
+        };
+        FoldPolys {
+            kappa: all(kappa),
+            eta: all(eta),
+            q: all(q),
+        }
+    }
+}
+
+/// The strict signs of `(κ_u, κ_v, C)` on a box, where `C = κ_v³ · (second derivative of η
+/// along the level curves of κ)`, proven on the box or on a cover of it by sub-boxes
+/// (halved up to `depth` times) that all agree; `None` if not proven.
+fn fold_signs(p: &FoldPolys, lo: &[f64], hi: &[f64], depth: u32) -> Option<[bool; 3]> {
+    let jet = |f: &[Bernstein<Interval>; 6]| -> [Interval; 6] {
+        std::array::from_fn(|i| range_on(&f[i], lo, hi))
+    };
+    let q = jet(&p.q);
+    let here = (|| {
+        let k = quotient_jet(&jet(&p.kappa), &q)?;
+        let h = quotient_jet(&jet(&p.eta), &q)?;
+        let (ku, kv) = (k[1], k[2]);
+        let two = Interval::point(2.0);
+        let form = |f: &[Interval; 6]| {
+            f[3].mul(&kv.mul(&kv))
+                .sub(&two.mul(&f[4]).mul(&ku).mul(&kv))
+                .add(&f[5].mul(&ku.mul(&ku)))
+        };
+        let c = kv.mul(&form(&h)).sub(&h[2].mul(&form(&k)));
+        [ku, kv, c]
+            .iter()
+            .all(strict)
+            .then(|| [ku.lo() > 0.0, kv.lo() > 0.0, c.lo() > 0.0])
+    })();
+    if here.is_some() || depth == 0 {
+        return here;
+    }
+    let mid = [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])];
+    let mut common: Option<[bool; 3]> = None;
+    for (u0, u1) in [(lo[0], mid[0]), (mid[0], hi[0])] {
+        for (v0, v1) in [(lo[1], mid[1]), (mid[1], hi[1])] {
+            let s = fold_signs(p, &[u0, v0], &[u1, v1], depth - 1)?;
+            if common.is_some_and(|c| c != s) {
+                return None;
+            }
+            common = Some(s);
+        }
+    }
+    common
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::Format;
+    use crate::solver::precision::Ladder;
+    use crate::solver::univariate::{isolate_roots, refine_root, Root};
+    use crate::surface::RationalPatch;
+    use crate::testing::shapes;
+
+    fn q(n: i64, d: i64) -> Rational {
+        Rational::from((n, d))
+    }
+
+    fn scene_of(patches: Vec<RationalPatch>, view: [i64; 3]) -> Scene {
+        let model = Model::from_patches(Format::Json, patches);
+        Scene::new(
+            &model,
+            &View::Direction(view.map(Rational::from)),
+            WeldTolerance::Exact,
+        )
+        .unwrap()
+    }
+
+    fn shifted(patches: Vec<RationalPatch>, by: [i64; 3]) -> Vec<RationalPatch> {
+        patches
+            .into_iter()
+            .map(|p| p.map_points(|x| std::array::from_fn(|k| Rational::from(&x[k] + by[k]))))
+            .collect()
+    }
+
+    fn exact(patch: usize, u: Rational, v: Rational) -> Sample {
+        Sample::Exact { patch, uv: [u, v] }
+    }
+
+    #[test]
+    fn a_sphere_seen_from_above_hides_its_lower_half() {
+        let s = scene_of(shapes::sphere(&Rational::from(1)), [0, 0, -1]);
+        let opts = RayOptions::default();
+        for p in 0..8 {
+            let n = layers_in_front(&s, &exact(p, q(1, 2), q(1, 2)), &opts).unwrap();
+            // Patches 0-3 are the southern hemisphere.
+            assert_eq!(n, usize::from(p < 4), "patch {p}");
+        }
+    }
+
+    #[test]
+    fn a_point_on_a_shared_side_does_not_count_its_neighbour() {
+        let s = scene_of(shapes::sphere(&Rational::from(1)), [1, 2, -3]);
+        let opts = RayOptions::default();
+        // The side u = 1 of a northern patch is shared with the next one around.
+        for p in 4..8 {
+            let r = layers_in_front(&s, &exact(p, Rational::from(1), q(3, 8)), &opts);
+            let here = layers_in_front(&s, &exact(p, q(15, 16), q(3, 8)), &opts);
+            assert!(r.is_ok() && here.is_ok(), "patch {p}: {r:?} {here:?}");
+        }
+    }
+
+    #[test]
+    fn a_sphere_behind_another_is_hidden_twice() {
+        let mut patches = shapes::sphere(&Rational::from(1));
+        patches.extend(shifted(shapes::sphere(&Rational::from(1)), [0, 0, -3]));
+        let s = scene_of(patches, [0, 0, -1]);
+        let opts = RayOptions::default();
+        // The lower sphere's northern patches (12-15) at latitude ~45°: behind both sheets of
+        // the upper sphere.
+        for p in 12..16 {
+            assert_eq!(
+                layers_in_front(&s, &exact(p, q(1, 2), q(1, 2)), &opts),
+                Ok(2)
+            );
+        }
+        // Its southern patches: three sheets in front.
+        assert_eq!(
+            layers_in_front(&s, &exact(9, q(1, 2), q(1, 2)), &opts),
+            Ok(3)
+        );
+    }
+
+    /// Silhouette samples on the lines u = k/8 of every patch.
+    fn silhouette_samples(s: &Scene, model: &Model) -> Vec<Sample> {
+        let mut out = Vec::new();
+        for (i, p) in model.patches.iter().enumerate() {
+            let g = super::super::silhouette::silhouette_function(&p.surface, &s.projection.view);
+            for k in 1..8 {
+                let at = q(k, 8);
+                let line = fix_axis(&g, 0, &at);
+                let roots = isolate_roots(&line, &Ladder::default(), 40, &mut Default::default());
+                for r in roots.roots {
+                    let r =
+                        refine_root(&line, r, 1e-12, &Ladder::default(), &mut Default::default());
+                    if let Root::Between { lo, hi } = r {
+                        let interval = [lo.to_rational(), hi.to_rational()];
+                        out.push(Sample::Silhouette {
+                            patch: i,
+                            axis: 0,
+                            at: at.clone(),
+                            interval,
+                            g: g.clone(),
+                        });
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn the_silhouette_of_a_sphere_is_visible() {
+        let model = Model::from_patches(Format::Json, shapes::sphere(&Rational::from(1)));
+        let s = Scene::new(
+            &model,
+            &View::Direction([1, 2, 3].map(Rational::from)),
+            WeldTolerance::Exact,
+        )
+        .unwrap();
+        let samples = silhouette_samples(&s, &model);
+        assert!(samples.len() >= 4, "{}", samples.len());
+        for smp in &samples {
+            assert_eq!(
+                layers_in_front(&s, smp, &RayOptions::default()),
+                Ok(0),
+                "{smp:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn the_silhouette_of_a_sphere_behind_another_is_hidden_where_it_passes_behind() {
+        // A second unit sphere behind the first and shifted sideways: its outline passes
+        // behind the first sphere's disc over part of its length.
+        let mut patches = shapes::sphere(&Rational::from(1));
+        patches.extend(shifted(shapes::sphere(&Rational::from(1)), [1, 0, -4]));
+        let model = Model::from_patches(Format::Json, patches);
+        let dir = [1, 2, -6];
+        let view = View::Direction(dir.map(Rational::from));
+        let s = Scene::new(&model, &view, WeldTolerance::Exact).unwrap();
+        let d = super::super::vec3::normalize(dir.map(|x| x as f64));
+        let mut seen = [0, 0, 0];
+        let samples = silhouette_samples(&s, &model);
+        for smp in samples.iter().filter(|x| x.patch() >= 8) {
+            let Sample::Silhouette {
+                patch,
+                at,
+                interval,
+                ..
+            } = smp
+            else {
+                unreachable!()
+            };
+            let mut mid = Rational::from(&interval[0] + &interval[1]);
+            mid >>= 1u32;
+            let pt = model.patches[*patch]
+                .surface
+                .eval(at, &mid)
+                .map(|c| c.to_f64());
+            // Analytic: the ray P − t d (t > 0, toward the viewer) meets the unit sphere at
+            // the origin iff |P − t d|² = 1 has a positive root; then it crosses two sheets.
+            let pd = super::super::vec3::dot(pt, d);
+            let disc = pd * pd - (super::super::vec3::dot(pt, pt) - 1.0);
+            let hidden = disc > 0.0 && pd > 0.0;
+            // Samples within 1e-6 of the first sphere's outline are not asserted.
+            if disc.abs() < 1e-6 {
+                continue;
+            }
+            let n = layers_in_front(&s, smp, &RayOptions::default())
+                .unwrap_or_else(|e| panic!("{e}: {patch} {at} {mid}"));
+            assert_eq!(n, if hidden { 2 } else { 0 }, "{smp:?} at {pt:?}");
+            seen[n] += 1;
+        }
+        assert!(seen[0] > 0 && seen[2] > 0, "{seen:?}");
+    }
+}
