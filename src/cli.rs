@@ -3,7 +3,8 @@
 
 use crate::analysis::baseline::{baseline_silhouette, BaselineMethod};
 use crate::analysis::parabolic::parabolic;
-use crate::analysis::render::{silhouette_obj, silhouette_svg};
+use crate::analysis::hlr::{hidden_lines, HlrOptions, HlrReport};
+use crate::analysis::render::{hlr_svg, silhouette_obj, silhouette_svg};
 use crate::analysis::silhouette::{parse_vector, silhouette, Silhouette, SilhouetteReport, View};
 use crate::analysis::silhouette_certificate::{check_silhouette, SilhouetteCertificate};
 use crate::io::{read_model, read_model_bytes};
@@ -96,6 +97,28 @@ enum Command {
         #[command(flatten)]
         run: RunArgs,
     },
+    /// The hidden-line drawing of a model for a view: its silhouettes and patch boundaries,
+    /// each piece with its proven number of surface layers in front (QI: 0 = visible).
+    Hlr {
+        /// The model file.
+        model: PathBuf,
+        /// Parallel view direction x,y,z (from the viewer into the scene).
+        #[arg(
+            long,
+            allow_hyphen_values = true,
+            conflicts_with = "eye",
+            required_unless_present = "eye"
+        )]
+        dir: Option<String>,
+        /// Perspective eye point x,y,z.
+        #[arg(long, allow_hyphen_values = true)]
+        eye: Option<String>,
+        /// Output format.
+        #[arg(long, value_enum, default_value_t = HlrFormat::Text)]
+        format: HlrFormat,
+        #[command(flatten)]
+        run: RunArgs,
+    },
     /// Re-verifies a silhouette certificate against its model, independently of the solver, in
     /// exact arithmetic. Exit 0: valid; 1: invalid (the first failing item is named).
     Check {
@@ -170,6 +193,13 @@ enum CurveFormat {
     Json,
     Svg,
     Obj,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum HlrFormat {
+    Text,
+    Json,
+    Svg,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -273,20 +303,7 @@ where
             certificate,
         } => {
             check_run_arguments(&run)?;
-            let view = match (dir, eye) {
-                (Some(d), _) => View::Direction(
-                    parse_vector(&d).map_err(|e| CliError::input(format!("--dir: {e}")))?,
-                ),
-                (None, Some(e)) => {
-                    View::Eye(parse_vector(&e).map_err(|e| CliError::input(format!("--eye: {e}")))?)
-                }
-                (None, None) => return Err(CliError::input("give --dir X,Y,Z or --eye X,Y,Z")),
-            };
-            if view.is_degenerate() {
-                return Err(CliError::input(
-                    "--dir: the view direction must not be the zero vector",
-                ));
-            }
+            let view = parse_view(dir, eye)?;
             refuse_overwrite(run.output.iter().chain(&certificate), run.force)?;
             if certificate.is_some() && method != Method::Certified {
                 return Err(CliError::input(
@@ -380,6 +397,63 @@ where
                 pool.current_num_threads(),
             );
             let text = render_silhouette(format, &report, &m, &projection, &s)?;
+            write_output(run.output, &text, out)
+        }
+        Command::Hlr {
+            model,
+            dir,
+            eye,
+            format,
+            run,
+        } => {
+            check_run_arguments(&run)?;
+            let view = parse_view(dir, eye)?;
+            if run.tol.is_some() {
+                return Err(CliError::input(
+                    "--tol: not supported by hlr yet (the visibility of each piece is proven; the drawn points are not)",
+                ));
+            }
+            refuse_overwrite(run.output.iter(), run.force)?;
+            let Loaded {
+                name,
+                model: m,
+                weld,
+                opts,
+                pool,
+                ..
+            } = load(&model, &run)?;
+            let start = std::time::Instant::now();
+            let hopts = HlrOptions {
+                curve: opts,
+                ..HlrOptions::default()
+            };
+            let h = pool
+                .install(|| hidden_lines(&m, &view, &hopts, weld))
+                .map_err(|e| CliError::input(format!("{name}: {e}")))?;
+            let ms = start.elapsed().as_secs_f64() * 1e3;
+            let report = HlrReport::new(&name, &view, &h, ms, pool.current_num_threads());
+            let text = match format {
+                HlrFormat::Text => report.text(),
+                HlrFormat::Json => {
+                    serde_json::to_string_pretty(&report).map_err(|e| CliError {
+                        message: e.to_string(),
+                        code: 1,
+                    })? + "\n"
+                }
+                HlrFormat::Svg => {
+                    let title = format!(
+                        "{}: hidden lines, {} pieces, {}",
+                        name,
+                        report.pieces.len(),
+                        if report.certified {
+                            "visibility certified".to_string()
+                        } else {
+                            format!("{} pieces unresolved (red)", report.unresolved.len())
+                        }
+                    );
+                    hlr_svg(&m, &view, &h, &title)
+                }
+            };
             write_output(run.output, &text, out)
         }
         Command::Check {
@@ -606,6 +680,25 @@ fn thread_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, CliError> {
             message: format!("cannot start threads: {e}"),
             code: 1,
         })
+}
+
+/// The view from `--dir` or `--eye`.
+fn parse_view(dir: Option<String>, eye: Option<String>) -> Result<View, CliError> {
+    let view = match (dir, eye) {
+        (Some(d), _) => {
+            View::Direction(parse_vector(&d).map_err(|e| CliError::input(format!("--dir: {e}")))?)
+        }
+        (None, Some(e)) => {
+            View::Eye(parse_vector(&e).map_err(|e| CliError::input(format!("--eye: {e}")))?)
+        }
+        (None, None) => return Err(CliError::input("give --dir X,Y,Z or --eye X,Y,Z")),
+    };
+    if view.is_degenerate() {
+        return Err(CliError::input(
+            "--dir: the view direction must not be the zero vector",
+        ));
+    }
+    Ok(view)
 }
 
 fn render_silhouette(

@@ -776,45 +776,54 @@ fn densify(
     let mut pts = vec![p0];
     for i in 1..steps {
         let s = p0[o] + (p1[o] - p0[o]) * i as f64 / steps as f64;
-        let f = |x: f64| {
-            let mut pt = [0.0; 2];
-            pt[m] = x;
-            pt[o] = s;
-            g.eval(&pt)
-        };
-        let (mut x0, mut x1) = (lo[m], hi[m]);
-        let (mut f0, mut f1) = (f(x0), f(x1));
-        if f0 * f1 >= 0.0 || f0.is_nan() || f1.is_nan() {
-            continue;
+        if let Some(x) = zero_across(g, m, s, lo[m], hi[m]) {
+            let mut q = [0.0; 2];
+            q[m] = x;
+            q[o] = s;
+            pts.push(q);
         }
-        let mut side = 0;
-        for _ in 0..60 {
-            let x = (x0 * f1 - x1 * f0) / (f1 - f0);
-            let fx = f(x);
-            if fx == 0.0 || (x1 - x0).abs() < 1e-14 {
-                x0 = x;
-                x1 = x;
-                break;
-            }
-            if fx * f1 < 0.0 {
-                (x0, f0) = (x1, f1);
-                (x1, f1) = (x, fx);
-                side = 0;
-            } else {
-                (x1, f1) = (x, fx);
-                if side == 1 {
-                    f0 *= 0.5;
-                }
-                side = 1;
-            }
-        }
-        let mut q = [0.0; 2];
-        q[m] = 0.5 * (x0 + x1);
-        q[o] = s;
-        pts.push(q);
     }
     pts.push(p1);
     pts
+}
+
+/// The zero of g on the line where variable `1 − m` equals `s`, with variable `m` in
+/// `[lo, hi]` where g changes sign, found in f64 by the Illinois method (a drawing point, not
+/// a certified one); `None` without a sign change.
+pub(crate) fn zero_across(g: &Bernstein<f64>, m: usize, s: f64, lo: f64, hi: f64) -> Option<f64> {
+    let f = |x: f64| {
+        let mut pt = [0.0; 2];
+        pt[m] = x;
+        pt[1 - m] = s;
+        g.eval(&pt)
+    };
+    let (mut x0, mut x1) = (lo, hi);
+    let (mut f0, mut f1) = (f(x0), f(x1));
+    if f0 * f1 >= 0.0 || f0.is_nan() || f1.is_nan() {
+        return None;
+    }
+    let mut side = 0;
+    for _ in 0..60 {
+        let x = (x0 * f1 - x1 * f0) / (f1 - f0);
+        let fx = f(x);
+        if fx == 0.0 || (x1 - x0).abs() < 1e-14 {
+            x0 = x;
+            x1 = x;
+            break;
+        }
+        if fx * f1 < 0.0 {
+            (x0, f0) = (x1, f1);
+            (x1, f1) = (x, fx);
+            side = 0;
+        } else {
+            (x1, f1) = (x, fx);
+            if side == 1 {
+                f0 *= 0.5;
+            }
+            side = 1;
+        }
+    }
+    Some(0.5 * (x0 + x1))
 }
 
 /// Joins the crossings of two patches with a side on which the silhouette lies, when the

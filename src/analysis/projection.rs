@@ -52,6 +52,21 @@ pub struct ImagePolys {
     pub w: Poly,
 }
 
+impl ImagePolys {
+    /// The image polynomials restricted to one side of the square, in the side's increasing
+    /// parameter (u for `V0`/`V1`, v for `U0`/`U1`).
+    pub fn on_side(&self, edge: Edge) -> ImagePolys {
+        let r = |p: &Poly| side_restriction(p, edge);
+        ImagePolys {
+            x: r(&self.x),
+            y: r(&self.y),
+            q: r(&self.q),
+            depth: r(&self.depth),
+            w: r(&self.w),
+        }
+    }
+}
+
 fn dot(a: &[Rational; 3], b: &[Rational; 3]) -> Rational {
     let mut s = Rational::new();
     for k in 0..3 {
@@ -199,39 +214,6 @@ impl Projection {
             q,
             depth,
             w: w.clone(),
-        }
-    }
-
-    /// The image polynomials of one side of a patch, in the side's parameter `t`
-    /// (u for `V0`/`V1`, v for `U0`/`U1`, increasing).
-    pub fn side_image(&self, patch: &RationalPatch, edge: Edge) -> ImagePolys {
-        let [x0, x1, x2, w] = patch.homogeneous().map(|p| side_restriction(&p, edge));
-        self.image_of(&[x0, x1, x2], &w)
-    }
-
-    /// Unit image axes and depth axis in `f64`, for drawing.
-    pub fn frame_f64(&self) -> [[f64; 3]; 3] {
-        let unit = |v: &[Rational; 3]| {
-            super::vec3::normalize([v[0].to_f64(), v[1].to_f64(), v[2].to_f64()])
-        };
-        [unit(&self.a), unit(&self.b), unit(&self.d)]
-    }
-
-    /// The image of a point in `f64` in the unit frame (for drawing): `(x, y)` for a parallel
-    /// view, the central projection onto the plane at unit distance for an eye.
-    pub fn image_f64(&self, point: [f64; 3]) -> [f64; 2] {
-        let [a, b, d] = self.frame_f64();
-        let p = match &self.view {
-            View::Direction(_) => point,
-            View::Eye(e) => super::vec3::sub(point, [e[0].to_f64(), e[1].to_f64(), e[2].to_f64()]),
-        };
-        let (x, y) = (super::vec3::dot(p, a), super::vec3::dot(p, b));
-        match self.view {
-            View::Direction(_) => [x, y],
-            View::Eye(_) => {
-                let z = super::vec3::dot(p, d);
-                [x / z, y / z]
-            }
         }
     }
 

@@ -1,5 +1,6 @@
 //! SVG drawings of curves on a model, projected on the view plane.
 
+use super::hlr::{HiddenLines, HlrPiece, LineKind};
 use super::silhouette::{DrawPatch, Silhouette, View};
 use super::vec3::{cross, dot, normalize};
 use crate::model::Model;
@@ -104,17 +105,40 @@ pub fn silhouette_svg(model: &Model, view: &View, s: &Silhouette, title: &str) -
             proj.project(draw[*p].eval(0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])))
         })
         .collect();
-    let all = outlines
-        .iter()
-        .flatten()
-        .chain(curves.iter().flat_map(|c| c.1.iter()));
+    let mut layers = vec![Layer {
+        style: r##"stroke="#c8c8c8" stroke-width="0.6""##,
+        paths: outlines,
+    }];
+    let (good, bad): (Vec<_>, Vec<_>) = curves.into_iter().partition(|c| c.0);
+    layers.push(Layer {
+        style: r##"stroke="#000" stroke-width="1.8""##,
+        paths: good.into_iter().map(|c| c.1).collect(),
+    });
+    layers.push(Layer {
+        style: r##"stroke="#d00" stroke-width="1.8" stroke-dasharray="6,3""##,
+        paths: bad.into_iter().map(|c| c.1).collect(),
+    });
+    svg_document(title, &layers, &marks)
+}
+
+/// A set of polylines drawn with one SVG style.
+pub struct Layer {
+    /// SVG attributes of the paths.
+    pub style: &'static str,
+    /// The polylines, in image coordinates (y up).
+    pub paths: Vec<Vec<[f64; 2]>>,
+}
+
+/// An 800x800 SVG document of layers of polylines (fitted to the page, y up) and red marks,
+/// with the title as a caption.
+pub fn svg_document(title: &str, layers: &[Layer], marks: &[[f64; 2]]) -> String {
     let (mut x0, mut y0, mut x1, mut y1) = (
         f64::INFINITY,
         f64::INFINITY,
         f64::NEG_INFINITY,
         f64::NEG_INFINITY,
     );
-    for p in all {
+    for p in layers.iter().flat_map(|l| l.paths.iter().flatten()) {
         if p[0].is_finite() && p[1].is_finite() {
             x0 = x0.min(p[0]);
             y0 = y0.min(p[1]);
@@ -151,21 +175,15 @@ pub fn silhouette_svg(model: &Model, view: &View, s: &Silhouette, title: &str) -
         r#"<title>{}</title><rect width="100%" height="100%" fill="white"/>"#,
         escape(title)
     );
-    let _ = writeln!(
-        svg,
-        r##"<g fill="none" stroke="#c8c8c8" stroke-width="0.6">"##
-    );
-    for o in &outlines {
-        let _ = writeln!(svg, r#"<path d="{}"/>"#, path(o));
-    }
-    let _ = writeln!(svg, "</g>");
-    for (certified, c) in &curves {
-        let style = if *certified {
-            r##"stroke="#000" stroke-width="1.8""##
-        } else {
-            r##"stroke="#d00" stroke-width="1.8" stroke-dasharray="6,3""##
-        };
-        let _ = writeln!(svg, r#"<path fill="none" {style} d="{}"/>"#, path(c));
+    for layer in layers {
+        if layer.paths.is_empty() {
+            continue;
+        }
+        let _ = writeln!(svg, r#"<g fill="none" {}>"#, layer.style);
+        for o in &layer.paths {
+            let _ = writeln!(svg, r#"<path d="{}"/>"#, path(o));
+        }
+        let _ = writeln!(svg, "</g>");
     }
     for m in marks.iter().take(2000) {
         let (x, y) = map(*m);
@@ -181,6 +199,35 @@ pub fn silhouette_svg(model: &Model, view: &View, s: &Silhouette, title: &str) -
     );
     svg.push_str("</svg>\n");
     svg
+}
+
+/// A hidden-line drawing as an SVG document: visible pieces solid black (silhouettes thicker
+/// than boundaries), hidden pieces dashed grey, pieces whose visibility is not proven red.
+pub fn hlr_svg(model: &Model, view: &View, h: &HiddenLines, title: &str) -> String {
+    let proj = Projection::new(view, model);
+    let image = |p: &HlrPiece| -> Vec<[f64; 2]> { p.points.iter().map(|&x| proj.project(x)).collect() };
+    let pick = |f: &dyn Fn(&HlrPiece) -> bool| -> Vec<Vec<[f64; 2]>> {
+        h.pieces.iter().filter(|p| f(p)).map(image).collect()
+    };
+    let layers = [
+        Layer {
+            style: r##"stroke="#9a9a9a" stroke-width="0.8" stroke-dasharray="4,3""##,
+            paths: pick(&|p| p.qi.is_some_and(|q| q > 0)),
+        },
+        Layer {
+            style: r##"stroke="#000" stroke-width="1.0""##,
+            paths: pick(&|p| p.qi == Some(0) && p.kind == LineKind::Boundary),
+        },
+        Layer {
+            style: r##"stroke="#000" stroke-width="1.8""##,
+            paths: pick(&|p| p.qi == Some(0) && p.kind == LineKind::Silhouette),
+        },
+        Layer {
+            style: r##"stroke="#d00" stroke-width="1.8""##,
+            paths: pick(&|p| p.qi.is_none()),
+        },
+    ];
+    svg_document(title, &layers, &[])
 }
 
 fn escape(s: &str) -> String {

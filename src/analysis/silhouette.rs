@@ -108,6 +108,15 @@ pub fn parse_vector(text: &str) -> Result<[Rational; 3], String> {
 }
 
 impl View {
+    /// The view as JSON: `{"dir": [x, y, z]}` or `{"eye": [x, y, z]}` (f64).
+    pub fn to_json(&self) -> serde_json::Value {
+        let v = |x: &[Rational; 3]| x.clone().map(|c| c.to_f64());
+        match self {
+            View::Direction(d) => serde_json::json!({ "dir": v(d) }),
+            View::Eye(e) => serde_json::json!({ "eye": v(e) }),
+        }
+    }
+
     /// Whether a direction view is the zero vector (meaningless).
     pub fn is_degenerate(&self) -> bool {
         match self {
@@ -209,12 +218,7 @@ impl SilhouetteReport {
         time_ms: f64,
         threads: usize,
     ) -> SilhouetteReport {
-        let v = |x: &[Rational; 3]| x.clone().map(|c| c.to_f64());
-        let view = match view {
-            View::Direction(d) => serde_json::json!({ "dir": v(d) }),
-            View::Eye(e) => serde_json::json!({ "eye": v(e) }),
-        };
-        SilhouetteReport::of_curves(model, "silhouette", view, s, time_ms, threads)
+        SilhouetteReport::of_curves(model, "silhouette", view.to_json(), s, time_ms, threads)
     }
 
     /// The report of a run of [`model_curves`] for the curve family `kind`, with the view it
