@@ -2,8 +2,8 @@
 //! something can print JSON (`--format json`) whose field names are documented in README.
 
 use crate::analysis::baseline::{baseline_silhouette, BaselineMethod};
-use crate::analysis::parabolic::parabolic;
 use crate::analysis::hlr::{hidden_lines, HlrOptions, HlrReport};
+use crate::analysis::parabolic::parabolic;
 use crate::analysis::render::{hlr_svg, silhouette_obj, silhouette_svg};
 use crate::analysis::silhouette::{parse_vector, silhouette, Silhouette, SilhouetteReport, View};
 use crate::analysis::silhouette_certificate::{check_silhouette, SilhouetteCertificate};

@@ -43,10 +43,10 @@ const MAX_DEPTH: u32 = 10;
 /// use limn::analysis::silhouette::View;
 /// use limn::number::Rational;
 /// use limn::testing::shapes;
-/// let sphere = shapes::sphere(&Rational::from(1));
-/// let down = View::Direction([0, 0, -1].map(Rational::from));
-/// // Seen from above, the upper hemisphere's patches face the viewer and the lower ones away.
-/// let kinds: Vec<Facing> = sphere.iter().map(|p| facing(p, &down)).collect();
+/// let torus = shapes::torus(&Rational::from(2), &Rational::from(1));
+/// let tilted = View::Direction([1, 2, -20].map(Rational::from));
+/// // Seen from nearly above, the top patches face the viewer and the bottom ones away.
+/// let kinds: Vec<Facing> = torus.iter().map(|p| facing(p, &tilted)).collect();
 /// assert!(kinds.contains(&Facing::Front) && kinds.contains(&Facing::Back));
 /// ```
 pub fn facing(patch: &RationalPatch, view: &View) -> Facing {

@@ -28,16 +28,19 @@
 use super::facing::{facing, Facing};
 use super::model_curves::zero_across;
 use super::projection::{lift, side_point, ImagePolys};
-use super::ray::{fix_axis, layers_in_front, ratio_bounds, ImageBounds, RayOptions, Sample, Scene};
+use super::ray::{
+    fix_axis, fold_box_around, injective_box_around, layers_in_front, ratio_bounds, ImageBounds,
+    RayOptions, Sample, Scene,
+};
 use super::silhouette::{silhouette, DrawPatch, View};
 use crate::bernstein::Bernstein;
 use crate::model::{Model, WeldTolerance};
 use crate::number::{Interval, Precision, Rational};
 use crate::solver::dyadic::Dyadic;
 use crate::solver::precision::Ladder;
-use crate::solver::system::{solve_system, DyadicBoxN, SystemOptions, SystemRoots};
+use crate::solver::system::{solve_system_excluding, DyadicBoxN, SystemOptions, SystemRoots};
 use crate::solver::univariate::{isolate_roots_in, refine_root, Root};
-use crate::solver::CurveOptions;
+use crate::solver::{CrossingId, CurveOptions};
 use crate::surface::Edge;
 use rayon::prelude::*;
 
@@ -109,6 +112,49 @@ struct Segment {
     /// A direction `e` in which the image is strictly monotone, with the sign of
     /// `e · tangent`.
     monotone: Option<([Rational; 2], bool)>,
+    /// The points where it meets other lines in space (its ends, and junctions on a side).
+    vertices: Vec<Vertex>,
+    /// The patches it lies on: `(patch, side, reversed)` for the users of an edge (reversed:
+    /// the side runs opposite to the segment's parameter), `(patch, None, false)` for an arc.
+    on: Vec<(usize, Option<Edge>, bool)>,
+}
+
+/// Where a vertex of the line network is.
+#[derive(Clone, Debug, PartialEq)]
+enum Key {
+    /// A welded patch corner (its vertex id).
+    Corner(usize),
+    /// A point of an edge, by its parameter interval on the edge's first user.
+    Side { class: usize, t: [f64; 2] },
+    /// A crossing of a patch's silhouette inside the patch.
+    Inner { patch: usize, id: CrossingId },
+    /// A point where an arc was cut to make its pieces' images monotone: the line and the
+    /// parameter (its f64 bits).
+    Param { chain: usize, at: u64 },
+}
+
+/// A vertex of a segment.
+#[derive(Clone, Debug)]
+struct Vertex {
+    key: Key,
+    /// Its parameter interval on the segment.
+    param: [f64; 2],
+    /// Its parameter box on each patch it lies on: `(patch, lo, hi)`.
+    uv: Vec<(usize, [Rational; 2], [Rational; 2])>,
+}
+
+impl Key {
+    fn matches(&self, other: &Key) -> bool {
+        match (self, other) {
+            (Key::Corner(a), Key::Corner(b)) => a == b,
+            (Key::Side { class: a, t: s }, Key::Side { class: b, t: u }) => {
+                a == b && s[0] <= u[1] && u[0] <= s[1]
+            }
+            (Key::Inner { patch: a, id: x }, Key::Inner { patch: b, id: y }) => a == b && x == y,
+            (Key::Param { chain: a, at: x }, Key::Param { chain: b, at: y }) => a == b && x == y,
+            _ => false,
+        }
+    }
 }
 
 /// A piece of a line with constant visibility.
@@ -149,6 +195,8 @@ pub struct HlrStats {
     pub culled_pairs: usize,
     /// Segment-patch penetration systems solved.
     pub penetration_systems: usize,
+    /// Boxes around shared vertices excluded by a lemma (proofs/hidden-lines.md).
+    pub excluded_vertices: usize,
     /// Boxes examined by the crossing and penetration systems.
     pub boxes: usize,
     /// Ray tests run, and those refused (another sample was tried).
@@ -219,7 +267,13 @@ pub struct HlrReport {
 
 impl HlrReport {
     /// The report of a drawing.
-    pub fn new(model: &str, view: &View, h: &HiddenLines, time_ms: f64, threads: usize) -> HlrReport {
+    pub fn new(
+        model: &str,
+        view: &View,
+        h: &HiddenLines,
+        time_ms: f64,
+        threads: usize,
+    ) -> HlrReport {
         HlrReport {
             model: model.to_string(),
             view: view.to_json(),
@@ -260,7 +314,13 @@ impl HlrReport {
                 "NOT fully certified (see unresolved)"
             }
         );
-        let kinds = [Facing::Front, Facing::Back, Facing::Partial, Facing::EdgeOn, Facing::Undecided];
+        let kinds = [
+            Facing::Front,
+            Facing::Back,
+            Facing::Partial,
+            Facing::EdgeOn,
+            Facing::Undecided,
+        ];
         let names = ["front", "back", "partial", "edge-on", "undecided"];
         let parts: Vec<String> = kinds
             .iter()
@@ -329,95 +389,184 @@ pub fn hidden_lines(
         silhouette_unresolved: sil.unresolved.len(),
         ..HlrStats::default()
     };
-    let mut segments = boundary_segments(model, &scene);
-    segments.extend(silhouette_segments(&scene, &sil));
+    let mut segments = boundary_segments(&scene);
+    let arcs = silhouette_segments(&scene, &sil, &mut segments);
+    segments.extend(arcs);
     stats.segments = segments.len();
 
-    // Pairs of segments, and segment-patch penetrations.
-    let mut pairs = Vec::new();
-    for a in 0..segments.len() {
-        for b in a + 1..segments.len() {
-            let (sa, sb) = (&segments[a], &segments[b]);
+    // Pairs of segments (with the boxes around shared vertices proven to hold no other
+    // crossing), self-crossings of sides, and segment-patch penetrations.
+    let mut events: Vec<Vec<Event>> = vec![Vec::new(); segments.len()];
+    let mut jobs: Vec<Job> = Vec::new();
+    for (a, sa) in segments.iter().enumerate() {
+        // Every vertex inside a segment cuts it (a junction on a side).
+        for v in &sa.vertices {
+            events[a].push(Event::cut(v.param));
+        }
+        match (&sa.constraint, &sa.monotone) {
+            (None, _) => jobs.push(Job::SelfCrossing(a)),
+            (Some(_), Some(_)) => {}
+            (Some(_), None) => events[a].push(Event::unresolved(
+                sa.range,
+                "its image is not proven free of self-crossings (a cusp of the outline?)".into(),
+            )),
+        }
+        for (b, sb) in segments.iter().enumerate().skip(a + 1) {
             if !sa.bounds.meets_image(&sb.bounds) {
                 stats.culled_pairs += 1;
                 continue;
             }
             stats.pairs += 1;
-            if sa.chain == sb.chain && sa.order.abs_diff(sb.order) == 1 && common_monotone(sa, sb)
-            {
+            if sa.chain == sb.chain && sa.order.abs_diff(sb.order) == 1 && common_monotone(sa, sb) {
                 stats.monotone_pairs += 1;
                 continue;
             }
-            pairs.push((a, b));
+            jobs.push(Job::Pair(a, b));
         }
-    }
-    let mut penetrations = Vec::new();
-    for (a, s) in segments.iter().enumerate() {
         for (j, jb) in scene.bounds.iter().enumerate() {
-            if j == s.patch || adjacent(&scene, s.patch, j) {
+            if sa.on.iter().any(|x| x.0 == j) || sa.on.iter().any(|x| adjacent(&scene, x.0, j)) {
                 continue;
             }
-            let overlap_depth = jb.depth[0] <= s.bounds.depth[1] && s.bounds.depth[0] <= jb.depth[1];
-            if jb.meets_image(&s.bounds) && overlap_depth {
-                penetrations.push((a, j));
+            let overlap_depth =
+                jb.depth[0] <= sa.bounds.depth[1] && sa.bounds.depth[0] <= jb.depth[1];
+            if jb.meets_image(&sa.bounds) && overlap_depth {
+                stats.penetration_systems += 1;
+                jobs.push(Job::Penetration(a, j));
             }
         }
     }
-    stats.penetration_systems = penetrations.len();
-
-    let crossing_events: Vec<(usize, usize, SystemRoots)> = pairs
-        .par_iter()
-        .map(|&(a, b)| {
-            let (eqs, domain) = crossing_system(&segments[a], &segments[b]);
-            (a, b, solve_system(&eqs, &[], &domain, &opts.crossing))
-        })
-        .collect();
-    let penetration_events: Vec<(usize, SystemRoots)> = penetrations
-        .par_iter()
-        .map(|&(a, j)| {
-            let (eqs, domain) = penetration_system(&segments[a], &scene.images[j]);
-            (a, solve_system(&eqs, &[], &domain, &opts.crossing))
-        })
-        .collect();
-
-    let mut events: Vec<Vec<Event>> = vec![Vec::new(); segments.len()];
-    for (a, b, r) in &crossing_events {
-        stats.boxes += r.boxes;
-        let na = segments[*a].domain.len();
-        let (ia, ib) = (segments[*a].axis, na + segments[*b].axis);
-        for root in &r.roots {
-            events[*a].push(Event::cut(root.enclosure[ia]));
-            events[*b].push(Event::cut(root.enclosure[ib]));
-        }
-        for bx in &r.unresolved {
-            let why = format!(
-                "its crossing with another line (patch {}) is not isolated here",
-                segments[*b].patch
+    if std::env::var_os("LIMN_HLR_VERTS").is_some() {
+        for (k, sg) in segments.iter().enumerate() {
+            eprintln!(
+                "SEG {k} {:?} p{} {:?} range {:?} verts {:?} mono {}",
+                sg.kind,
+                sg.patch,
+                sg.edge,
+                sg.range,
+                sg.vertices
+                    .iter()
+                    .map(|v| (&v.key, v.param))
+                    .collect::<Vec<_>>(),
+                sg.monotone.is_some()
             );
-            events[*a].push(Event::unresolved(bx[ia], why));
-            let why = format!(
-                "its crossing with another line (patch {}) is not isolated here",
-                segments[*a].patch
-            );
-            events[*b].push(Event::unresolved(bx[ib], why));
         }
     }
-    for (a, r) in &penetration_events {
+    let results: Vec<(Job, SystemRoots, Vec<DyadicBoxN>)> = jobs
+        .par_iter()
+        .map(|job| {
+            let (eqs, domain, exclude) = match *job {
+                Job::Pair(a, b) => {
+                    let (eqs, domain) = crossing_system(&segments[a], &segments[b]);
+                    let mut exclude: Vec<DyadicBoxN> =
+                        arc_fold_exclusion(&scene, &segments[a], &segments[b])
+                            .into_iter()
+                            .collect();
+                    for va in &segments[a].vertices {
+                        for vb in &segments[b].vertices {
+                            if va.key.matches(&vb.key) {
+                                if let Some(x) =
+                                    vertex_exclusion(&scene, &segments[a], &segments[b], va, vb)
+                                {
+                                    exclude.push(x);
+                                }
+                            }
+                        }
+                    }
+                    (eqs, domain, exclude)
+                }
+                Job::SelfCrossing(a) => {
+                    let (eqs, domain) = self_crossing_system(&segments[a]);
+                    (eqs, domain, Vec::new())
+                }
+                Job::Penetration(a, j) => {
+                    let (eqs, domain) = penetration_system(&segments[a], &scene.images[j]);
+                    (eqs, domain, Vec::new())
+                }
+            };
+            let r = solve_system_excluding(&eqs, &[], &domain, &exclude, &opts.crossing);
+            (*job, r, exclude)
+        })
+        .collect();
+    for (job, r, exclude) in &results {
+        if std::env::var_os("LIMN_HLR_DEBUG").is_some() && !r.unresolved.is_empty() {
+            let desc = |k: usize| {
+                let s = &segments[k];
+                format!(
+                    "{:?} p{} {:?} dom {:?}",
+                    s.kind,
+                    s.patch,
+                    s.edge,
+                    s.domain
+                        .iter()
+                        .map(|d| [d.0.to_f64(), d.1.to_f64()])
+                        .collect::<Vec<_>>()
+                )
+            };
+            match *job {
+                Job::Pair(a, b) => eprintln!(
+                    "PAIR {} x {}: boxes {} unresolved {} roots {} excl {}",
+                    desc(a),
+                    desc(b),
+                    r.boxes,
+                    r.unresolved.len(),
+                    r.roots.len(),
+                    exclude.len()
+                ),
+                Job::SelfCrossing(a) => eprintln!(
+                    "SELF {}: boxes {} unresolved {}",
+                    desc(a),
+                    r.boxes,
+                    r.unresolved.len()
+                ),
+                Job::Penetration(a, j) => eprintln!(
+                    "PEN {} x patch {j}: boxes {} unresolved {}",
+                    desc(a),
+                    r.boxes,
+                    r.unresolved.len()
+                ),
+            }
+        }
         stats.boxes += r.boxes;
-        let ia = segments[*a].axis;
+        stats.excluded_vertices += exclude.len();
+        // Which variables are each segment's parameter, and what an unresolved box means.
+        let (targets, why): (Vec<(usize, usize)>, String) = match *job {
+            Job::Pair(a, b) => {
+                let na = segments[a].domain.len();
+                (
+                    vec![(a, segments[a].axis), (b, na + segments[b].axis)],
+                    format!(
+                        "where it crosses a line of patch {} (or patch {}) is not isolated",
+                        segments[b].patch, segments[a].patch
+                    ),
+                )
+            }
+            Job::SelfCrossing(a) => (
+                vec![(a, 0), (a, 1)],
+                "where its image crosses itself is not isolated".into(),
+            ),
+            Job::Penetration(a, j) => (
+                vec![(a, segments[a].axis)],
+                format!("where it may pass through patch {j} is not isolated"),
+            ),
+        };
         for root in &r.roots {
-            events[*a].push(Event::cut(root.enclosure[ia]));
+            for &(s, k) in &targets {
+                events[s].push(Event::cut(root.enclosure[k]));
+            }
         }
         for bx in &r.unresolved {
-            events[*a].push(Event::unresolved(
-                bx[ia],
-                "where it may pass through another patch is not isolated here".into(),
-            ));
+            for &(s, k) in &targets {
+                events[s].push(Event::unresolved(bx[k], why.clone()));
+            }
         }
     }
 
     // Pieces, and their QI.
-    let draws: Vec<DrawPatch> = model.patches.iter().map(|p| DrawPatch::new(&p.surface)).collect();
+    let draws: Vec<DrawPatch> = model
+        .patches
+        .iter()
+        .map(|p| DrawPatch::new(&p.surface))
+        .collect();
     let per_segment: Vec<(Vec<HlrPiece>, usize, usize)> = segments
         .par_iter()
         .zip(events.par_iter())
@@ -429,12 +578,27 @@ pub fn hidden_lines(
         stats.samples += samples;
         stats.refused_samples += refused;
     }
-    let facing = model.patches.par_iter().map(|p| facing(&p.surface, view)).collect();
+    let facing = model
+        .patches
+        .par_iter()
+        .map(|p| facing(&p.surface, view))
+        .collect();
     Ok(HiddenLines {
         pieces,
         facing,
         stats,
     })
+}
+
+/// A system to solve.
+#[derive(Clone, Copy, Debug)]
+enum Job {
+    /// Two segments' image crossings.
+    Pair(usize, usize),
+    /// A side's image crossing itself.
+    SelfCrossing(usize),
+    /// A segment passing through a patch.
+    Penetration(usize, usize),
 }
 
 /// A cut or an unresolved stretch on a segment's parameter.
@@ -518,7 +682,10 @@ fn monotone_along(t: &[Poly; 2], e: &[Rational; 2], domain: &DyadicBoxN) -> Opti
 /// A direction in which the segment's image is monotone: the image tangent at its centre,
 /// rounded to a rational direction.
 fn find_monotone(t: &[Poly; 2], domain: &DyadicBoxN) -> Option<([Rational; 2], bool)> {
-    let mid: Vec<f64> = domain.iter().map(|d| 0.5 * (d.0.to_f64() + d.1.to_f64())).collect();
+    let mid: Vec<f64> = domain
+        .iter()
+        .map(|d| 0.5 * (d.0.to_f64() + d.1.to_f64()))
+        .collect();
     let tf: Vec<f64> = t
         .iter()
         .map(|p| p.convert::<f64>(Precision::F64).eval(&mid))
@@ -543,48 +710,86 @@ fn common_monotone(a: &Segment, b: &Segment) -> bool {
         || monotone_along(&a.tangent, eb, &a.domain) == Some(*sb)
 }
 
-/// The boundary lines: each distinct edge once, cut into monotone parameter intervals.
-fn boundary_segments(_model: &Model, scene: &Scene) -> Vec<Segment> {
+/// The corner indices (into `PatchAdjacency::corners`) at the start and end of a side, in
+/// its increasing parameter.
+fn side_corners(edge: Edge) -> (usize, usize) {
+    match edge {
+        Edge::V0 => (0, 1),
+        Edge::U1 => (1, 2),
+        Edge::V1 => (3, 2),
+        Edge::U0 => (0, 3),
+    }
+}
+
+/// A rational from an f64 (exact).
+fn rat(x: f64) -> Rational {
+    Rational::from_f64(x).unwrap_or_default()
+}
+
+/// The parameter box, on each user patch, of the edge point with class parameter in `t`.
+fn side_uv(
+    users: &[(usize, Option<Edge>, bool)],
+    t: [f64; 2],
+) -> Vec<(usize, [Rational; 2], [Rational; 2])> {
+    users
+        .iter()
+        .filter_map(|&(p, e, rev)| {
+            let e = e?;
+            let (a, b) = if rev {
+                (1.0 - t[1], 1.0 - t[0])
+            } else {
+                (t[0], t[1])
+            };
+            let lo = side_point(e, &rat(a));
+            let hi = side_point(e, &rat(b));
+            Some((p, lo, hi))
+        })
+        .collect()
+}
+
+/// The boundary lines: each distinct edge once, as one segment.
+fn boundary_segments(scene: &Scene) -> Vec<Segment> {
     let mut out = Vec::new();
     for (chain, users) in scene.adjacency.edges.iter().enumerate() {
         let first = users[0];
         let im = scene.images[first.patch].on_side(first.edge);
-        // Monotone intervals by bisection (up to 2^-6); a stretch that is never monotone
-        // keeps its finest intervals, and its self-crossings are solved like any pair.
-        let mut stack = vec![(Dyadic::ZERO, Dyadic::ONE, 0u32)];
-        let mut intervals = Vec::new();
-        let t = tangent_polys_side(&im);
-        let tangent = t.clone();
-        while let Some((lo, hi, depth)) = stack.pop() {
-            let dom = vec![(lo, hi)];
-            match find_monotone(&t, &dom) {
-                Some(m) => intervals.push((lo, hi, Some(m))),
-                None if depth >= 6 => intervals.push((lo, hi, None)),
-                None => {
-                    let mid = lo.midpoint(hi).expect("shallow");
-                    stack.push((mid, hi, depth + 1));
-                    stack.push((lo, mid, depth + 1));
-                }
-            }
-        }
-        for (order, (lo, hi, monotone)) in intervals.into_iter().enumerate() {
-            let domain = vec![(lo, hi)];
-            out.push(Segment {
-                kind: LineKind::Boundary,
-                patch: first.patch,
-                edge: Some(first.edge),
-                chain,
-                order,
-                bounds: bounds_on(&im, &domain),
-                image: im.clone(),
-                constraint: None,
-                tangent: tangent.clone(),
-                range: [lo.to_f64(), hi.to_f64()],
-                domain,
-                axis: 0,
-                monotone,
-            });
-        }
+        let tangent = tangent_polys_side(&im);
+        let domain = vec![(Dyadic::ZERO, Dyadic::ONE)];
+        let on: Vec<(usize, Option<Edge>, bool)> = users
+            .iter()
+            .map(|u| (u.patch, Some(u.edge), u.reversed != first.reversed))
+            .collect();
+        let (c0, c1) = side_corners(first.edge);
+        let corners = &scene.adjacency.corners[first.patch];
+        let vertices = vec![
+            Vertex {
+                key: Key::Corner(corners[c0]),
+                param: [0.0, 0.0],
+                uv: side_uv(&on, [0.0, 0.0]),
+            },
+            Vertex {
+                key: Key::Corner(corners[c1]),
+                param: [1.0, 1.0],
+                uv: side_uv(&on, [1.0, 1.0]),
+            },
+        ];
+        out.push(Segment {
+            kind: LineKind::Boundary,
+            patch: first.patch,
+            edge: Some(first.edge),
+            chain,
+            order: 0,
+            bounds: bounds_on(&im, &domain),
+            monotone: find_monotone(&tangent, &domain),
+            image: im,
+            constraint: None,
+            tangent,
+            range: [0.0, 1.0],
+            domain,
+            axis: 0,
+            vertices,
+            on,
+        });
     }
     out
 }
@@ -595,16 +800,113 @@ fn tangent_polys_side(im: &ImagePolys) -> [Poly; 2] {
     [d(&im.x), d(&im.y)]
 }
 
+/// The edge class and the user's reversal of a patch side.
+fn class_of(scene: &Scene, patch: usize, edge: Edge) -> Option<(usize, bool)> {
+    scene
+        .adjacency
+        .edges
+        .iter()
+        .enumerate()
+        .find_map(|(c, users)| {
+            let me = users.iter().find(|u| u.patch == patch && u.edge == edge)?;
+            Some((c, me.reversed != users[0].reversed))
+        })
+}
+
+/// The vertex of a silhouette crossing of patch `i`.
+fn crossing_vertex(
+    scene: &Scene,
+    boundary: &[Segment],
+    topo: &crate::solver::CurveTopology,
+    i: usize,
+    id: &CrossingId,
+    axis: usize,
+) -> Vertex {
+    let loc = topo.locations[id];
+    let param = [loc[0][axis], loc[1][axis]];
+    let own = (
+        i,
+        [rat(loc[0][0]), rat(loc[0][1])],
+        [rat(loc[1][0]), rat(loc[1][1])],
+    );
+    // A patch corner.
+    if let CrossingId::Exact { u, v } = id {
+        let at = |d: &Dyadic| *d == Dyadic::ZERO || *d == Dyadic::ONE;
+        if at(u) && at(v) {
+            let k = match (*u == Dyadic::ONE, *v == Dyadic::ONE) {
+                (false, false) => 0,
+                (true, false) => 1,
+                (true, true) => 2,
+                (false, true) => 3,
+            };
+            let vid = scene.adjacency.corners[i][k];
+            let uv = boundary
+                .iter()
+                .flat_map(|b| b.vertices.iter())
+                .find(|x| x.key == Key::Corner(vid))
+                .map_or_else(|| vec![own.clone()], |x| x.uv.clone());
+            return Vertex {
+                key: Key::Corner(vid),
+                param,
+                uv,
+            };
+        }
+    }
+    let sides = super::model_curves::side_of(id);
+    if let Some(&(edge, s0, s1)) = sides.first() {
+        let (lo, hi) = topo
+            .intervals
+            .get(id)
+            .map_or((s0.to_f64(), s1.to_f64()), |(a, b)| {
+                (a.to_f64(), b.to_f64())
+            });
+        if let Some((class, rev)) = class_of(scene, i, edge) {
+            let t = if rev { [1.0 - hi, 1.0 - lo] } else { [lo, hi] };
+            return Vertex {
+                key: Key::Side { class, t },
+                param,
+                uv: side_uv(&boundary[class].on, t),
+            };
+        }
+        // A collapsed side (a pole): one point.
+        if let Some(&(_, _, vid)) = scene
+            .adjacency
+            .collapsed
+            .iter()
+            .find(|(p, e, _)| *p == i && *e == edge)
+        {
+            return Vertex {
+                key: Key::Corner(vid),
+                param,
+                uv: vec![own],
+            };
+        }
+    }
+    Vertex {
+        key: Key::Inner { patch: i, id: *id },
+        param,
+        uv: vec![own],
+    }
+}
+
 /// The silhouette arcs, one segment per certified cell; the arcs of one branch form a line.
-fn silhouette_segments(scene: &Scene, sil: &super::silhouette::Silhouette) -> Vec<Segment> {
+/// Their ends on sides are added to the sides as vertices (junctions).
+fn silhouette_segments(
+    scene: &Scene,
+    sil: &super::silhouette::Silhouette,
+    boundary: &mut [Segment],
+) -> Vec<Segment> {
     let mut out = Vec::new();
-    let chain0 = scene.adjacency.edges.len();
-    let mut chain = chain0;
+    let mut chain = boundary.len();
     for (i, solved) in sil.solved.iter().enumerate() {
         let topo = &solved.topology;
         for branch in &topo.branches {
             let ids = &branch.crossings;
-            let n = if branch.closed { ids.len() } else { ids.len().saturating_sub(1) };
+            let n = if branch.closed {
+                ids.len()
+            } else {
+                ids.len().saturating_sub(1)
+            };
             let mut order = 0;
             for k in 0..n {
                 let (a, b) = (&ids[k], &ids[(k + 1) % ids.len()]);
@@ -620,18 +922,35 @@ fn silhouette_segments(scene: &Scene, sil: &super::silhouette::Silhouette) -> Ve
                     "graph over v" => 1,
                     _ => continue, // along a side: drawn as the boundary
                 };
-                let domain: DyadicBoxN = vec![
+                let (pa, pb) = (topo.locations[a], topo.locations[b]);
+                let range = [pa[0][axis].min(pb[0][axis]), pa[1][axis].max(pb[1][axis])];
+                // The cell, narrowed along the parameter to the arc's extent: other arcs of
+                // the same cell (each meets a parameter line once) lie outside it.
+                let mut domain: DyadicBoxN = vec![
                     (arc.cell.lo[0], arc.cell.hi[0]),
                     (arc.cell.lo[1], arc.cell.hi[1]),
                 ];
-                let (pa, pb) = (topo.locations[a], topo.locations[b]);
-                let range = [
-                    pa[0][axis].min(pb[0][axis]),
-                    pa[1][axis].max(pb[1][axis]),
-                ];
+                let (lo, hi) = (dyadic_below(range[0]), dyadic_above(range[1]));
+                domain[axis] = (domain[axis].0.max(lo), domain[axis].1.min(hi));
+                let domain = narrow_to_curve(&solved.g, &domain, axis);
                 let tangent = tangent_polys_arc(scene, i, &solved.g);
-                let monotone = find_monotone(&tangent, &domain);
-                out.push(Segment {
+                let vertices: Vec<Vertex> = [a, b]
+                    .iter()
+                    .map(|id| crossing_vertex(scene, boundary, topo, i, id, axis))
+                    .collect();
+                for v in &vertices {
+                    if let Key::Side { class, t } = &v.key {
+                        let side = &mut boundary[*class];
+                        if !side.vertices.iter().any(|x| x.key.matches(&v.key)) {
+                            side.vertices.push(Vertex {
+                                key: v.key.clone(),
+                                param: *t,
+                                uv: v.uv.clone(),
+                            });
+                        }
+                    }
+                }
+                let whole = Segment {
                     kind: LineKind::Silhouette,
                     patch: i,
                     edge: None,
@@ -640,18 +959,443 @@ fn silhouette_segments(scene: &Scene, sil: &super::silhouette::Silhouette) -> Ve
                     bounds: bounds_on(&scene.images[i], &domain),
                     image: scene.images[i].clone(),
                     constraint: Some(solved.g.clone()),
+                    monotone: find_monotone(&tangent, &domain),
                     domain,
                     axis,
                     range,
                     tangent,
-                    monotone,
-                });
-                order += 1;
+                    vertices,
+                    on: vec![(i, None, false)],
+                };
+                // Along the branch, vertex a comes first.
+                let forward = whole.vertices[0].param[0] <= whole.range[0];
+                let mut pieces = split_monotone(whole, 6);
+                if !forward {
+                    pieces.reverse();
+                }
+                for mut p in pieces {
+                    p.order = order;
+                    out.push(p);
+                    order += 1;
+                }
             }
             chain += 1;
         }
     }
     out
+}
+
+/// An arc cut at dyadic parameters (bisection, up to `depth` times) into pieces whose images
+/// are monotone; the cut points become shared vertices. Pieces never made monotone stay (their
+/// self-crossings are reported unresolved).
+fn split_monotone(s: Segment, depth: u32) -> Vec<Segment> {
+    if s.monotone.is_some() || depth == 0 {
+        return vec![s];
+    }
+    let (lo, hi) = s.domain[s.axis];
+    let Some(mid) = lo.midpoint(hi) else {
+        return vec![s];
+    };
+    let c = mid.to_f64();
+    if c <= s.range[0] || c >= s.range[1] {
+        return vec![s];
+    }
+    let Some(g) = s.constraint.clone() else {
+        return vec![s];
+    };
+    // The arc's point on the line axis = mid: the only root of g there in the cell.
+    let m = 1 - s.axis;
+    let line = fix_axis(&g, s.axis, &mid.to_rational());
+    let stats = &mut Default::default();
+    let roots = isolate_roots_in(
+        &line,
+        s.domain[m].0,
+        s.domain[m].1,
+        &Ladder::default(),
+        40,
+        stats,
+    );
+    if roots.roots.len() != 1 || !roots.unresolved.is_empty() {
+        return vec![s];
+    }
+    let r = refine_root(&line, roots.roots[0], 1e-12, &Ladder::default(), stats);
+    let mut lo_uv = [mid.to_rational(), mid.to_rational()];
+    let mut hi_uv = lo_uv.clone();
+    lo_uv[m] = r.lo().to_rational();
+    hi_uv[m] = r.hi().to_rational();
+    let cut = Vertex {
+        key: Key::Param {
+            chain: s.chain,
+            at: c.to_bits(),
+        },
+        param: [c, c],
+        uv: vec![(s.patch, lo_uv, hi_uv)],
+    };
+    let half = |range: [f64; 2], dom: (Dyadic, Dyadic), keep_low: bool| {
+        let mut d = s.clone();
+        d.domain[s.axis] = dom;
+        d.domain = narrow_to_curve(&g, &d.domain, s.axis);
+        d.range = range;
+        d.bounds = bounds_on(&d.image, &d.domain);
+        d.monotone = find_monotone(&d.tangent, &d.domain);
+        d.vertices = s
+            .vertices
+            .iter()
+            .filter(|v| {
+                if keep_low {
+                    v.param[1] <= c
+                } else {
+                    v.param[0] >= c
+                }
+            })
+            .cloned()
+            .chain([cut.clone()])
+            .collect();
+        d
+    };
+    let low = half([s.range[0], c], (lo, mid), true);
+    let high = half([c, s.range[1]], (mid, hi), false);
+    let mut out = split_monotone(low, depth - 1);
+    out.extend(split_monotone(high, depth - 1));
+    out
+}
+
+/// The box narrowed across the parameter axis to the hull of the sub-boxes (of a bisection
+/// of that axis into up to 64) where `g` may vanish (a Bernstein coefficient sign test):
+/// the arc inside the box lies in it.
+fn narrow_to_curve(g: &Poly, domain: &DyadicBoxN, axis: usize) -> DyadicBoxN {
+    let m = 1 - axis;
+    let gi: Bernstein<Interval> = g.convert(Precision::F64);
+    let mut keep: Option<(Dyadic, Dyadic)> = None;
+    let mut stack = vec![(domain[m].0, domain[m].1, 0u32)];
+    while let Some((lo, hi, depth)) = stack.pop() {
+        let mut d = domain.clone();
+        d[m] = (lo, hi);
+        let l: Vec<Interval> = d
+            .iter()
+            .map(|x| Interval::point(x.0.to_f64_bounds().0))
+            .collect();
+        let h: Vec<Interval> = d
+            .iter()
+            .map(|x| Interval::point(x.1.to_f64_bounds().1))
+            .collect();
+        let c = gi.restrict_box(&l, &h);
+        let c = c.coeffs();
+        if c.iter().all(|x| x.lo() > 0.0) || c.iter().all(|x| x.hi() < 0.0) {
+            continue;
+        }
+        match lo.midpoint(hi) {
+            Some(mid) if depth < 6 => {
+                stack.push((lo, mid, depth + 1));
+                stack.push((mid, hi, depth + 1));
+            }
+            _ => {
+                keep = Some(keep.map_or((lo, hi), |(a, b)| (a.min(lo), b.max(hi))));
+            }
+        }
+    }
+    let mut out = domain.clone();
+    if let Some(k) = keep {
+        out[m] = k;
+    }
+    out
+}
+
+/// The part of a segment's domain that lies in the parameter box `b` of patch `p`, if the
+/// segment lies on `p` and meets `b`.
+fn sub_domain(s: &Segment, p: usize, b: &DyadicBoxN) -> Option<DyadicBoxN> {
+    let &(_, edge, rev) = s.on.iter().find(|x| x.0 == p)?;
+    match edge {
+        None => {
+            let d: DyadicBoxN = (0..2)
+                .map(|a| (s.domain[a].0.max(b[a].0), s.domain[a].1.min(b[a].1)))
+                .collect();
+            d.iter().all(|(l, h)| l < h).then_some(d)
+        }
+        Some(e) => {
+            // The side's fixed coordinate must lie in the box; its free one gives the range.
+            let (fixed, at_one) = match e {
+                Edge::V0 => (1, false),
+                Edge::V1 => (1, true),
+                Edge::U0 => (0, false),
+                Edge::U1 => (0, true),
+            };
+            let c = if at_one { Dyadic::ONE } else { Dyadic::ZERO };
+            if !(b[fixed].0 <= c && c <= b[fixed].1) {
+                return None;
+            }
+            let (lo, hi) = b[1 - fixed];
+            let (lo, hi) = if rev {
+                (hi.one_minus(), lo.one_minus())
+            } else {
+                (lo, hi)
+            };
+            let (lo, hi) = (lo.max(s.domain[0].0), hi.min(s.domain[0].1));
+            (lo < hi).then(|| vec![(lo, hi)])
+        }
+    }
+}
+
+/// A box of the pair's product domain around a shared vertex that holds no crossing of the
+/// two segments other than points they share in space (which are vertices, where both are
+/// cut anyway), proven by one of the lemmas of `proofs/hidden-lines.md`; `None` if none
+/// applies.
+fn vertex_exclusion(
+    scene: &Scene,
+    a: &Segment,
+    b: &Segment,
+    va: &Vertex,
+    vb: &Vertex,
+) -> Option<DyadicBoxN> {
+    // A patch both lie on near the vertex: the fold lemma (if one is a silhouette arc of it)
+    // or the injective box.
+    for (p, lo, hi) in &va.uv {
+        let Some((_, lo2, hi2)) = vb.uv.iter().find(|x| x.0 == *p) else {
+            continue;
+        };
+        if !a.on.iter().any(|x| x.0 == *p) || !b.on.iter().any(|x| x.0 == *p) {
+            continue;
+        }
+        let lo: [Rational; 2] = std::array::from_fn(|k| lo[k].clone().min(lo2[k].clone()));
+        let hi: [Rational; 2] = std::array::from_fn(|k| hi[k].clone().max(hi2[k].clone()));
+        let lo = lo.map(|x| dyadic_floor(&x));
+        let hi = hi.map(|x| dyadic_ceil(&x));
+        let fold = [a, b]
+            .iter()
+            .any(|s| s.kind == LineKind::Silhouette && s.patch == *p);
+        let bx = if fold {
+            fold_box_around(scene, *p, &lo, &hi)
+        } else {
+            injective_box_around(scene, *p, &lo, &hi)
+        };
+        if let Some(bx) = bx {
+            if let (Some(da), Some(db)) = (sub_domain(a, *p, &bx), sub_domain(b, *p, &bx)) {
+                return Some(da.into_iter().chain(db).collect());
+            }
+        }
+    }
+    // Different patches: the two images leave the vertex on opposite sides of a line.
+    opposite_monotone(a, b, va, vb)
+}
+
+/// A dyadic (40 bits) at or below an f64 in [0, 1].
+fn dyadic_below(x: f64) -> Dyadic {
+    let n = (x.clamp(0.0, 1.0) * (1u64 << 40) as f64).floor() as u64;
+    Dyadic::new(n.min(1 << 40), 40)
+}
+
+/// A dyadic (40 bits) at or above an f64 in [0, 1].
+fn dyadic_above(x: f64) -> Dyadic {
+    let n = (x.clamp(0.0, 1.0) * (1u64 << 40) as f64).ceil() as u64;
+    Dyadic::new(n.min(1 << 40), 40)
+}
+
+/// Lemma F (the fold lemma, `proofs/ray-count.md`) for a pair where one segment is a
+/// silhouette arc of a patch the other lies on: on a box B around the arc's cell where it
+/// holds, every crossing of the arc with a curve of the patch inside B is a point the two
+/// share in space (a vertex, where both are cut), so the product of the arc's cell and the
+/// other's part inside B is excluded.
+fn arc_fold_exclusion(scene: &Scene, a: &Segment, b: &Segment) -> Option<DyadicBoxN> {
+    let (arc, other, arc_first) =
+        if a.kind == LineKind::Silhouette && b.on.iter().any(|x| x.0 == a.patch) {
+            (a, b, true)
+        } else if b.kind == LineKind::Silhouette && a.on.iter().any(|x| x.0 == b.patch) {
+            (b, a, false)
+        } else {
+            return None;
+        };
+    let lo = [arc.domain[0].0.to_rational(), arc.domain[1].0.to_rational()];
+    let hi = [arc.domain[0].1.to_rational(), arc.domain[1].1.to_rational()];
+    let bx = fold_box_around(scene, arc.patch, &lo, &hi)?;
+    let near = sub_domain(other, arc.patch, &bx)?;
+    Some(if arc_first {
+        arc.domain.iter().copied().chain(near).collect()
+    } else {
+        near.into_iter().chain(arc.domain.iter().copied()).collect()
+    })
+}
+
+/// The dyadic (40 bits) at or below / above a rational in [0, 1].
+fn dyadic_floor(x: &Rational) -> Rational {
+    let mut y = Rational::from(x << 40u32);
+    y = Rational::from(y.floor_ref());
+    y >>= 40u32;
+    y
+}
+
+fn dyadic_ceil(x: &Rational) -> Rational {
+    let mut y = Rational::from(x << 40u32);
+    y = Rational::from(y.ceil_ref());
+    y >>= 40u32;
+    y
+}
+
+/// The near part of a segment at one of its ends, and the sign of moving away from it along
+/// the segment's orientation (+1: increasing parameter / the tangent field's direction).
+fn near_end(s: &Segment, v: &Vertex, depth: u32) -> Option<(DyadicBoxN, bool)> {
+    // The vertex that defines the start (end) of the segment's parameter extent.
+    let at_start = v.param[0] <= s.range[0];
+    let at_end = v.param[1] >= s.range[1];
+    if at_start == at_end {
+        return None;
+    }
+    // The parameter axis restricted to the first (last) 2^-depth of the domain's width.
+    let (lo, hi) = s.domain[s.axis];
+    let mut d = s.domain.clone();
+    d[s.axis] = if at_start {
+        let mut c = hi;
+        for _ in 0..depth {
+            c = lo.midpoint(c)?;
+        }
+        (lo, c)
+    } else {
+        let mut c = lo;
+        for _ in 0..depth {
+            c = c.midpoint(hi)?;
+        }
+        (c, hi)
+    };
+    let away_up = match &s.constraint {
+        // A side: moving away from its start increases the parameter.
+        None => at_start,
+        // An arc: the field (−g_v, g_u) moves along the parameter axis with the sign of −g_v
+        // (axis u) or g_u (axis v), strict on the cell.
+        Some(g) => {
+            let field_up = if s.axis == 0 {
+                !strict_sign(&g.deriv(1), &s.domain)?
+            } else {
+                strict_sign(&g.deriv(0), &s.domain)?
+            };
+            at_start == field_up
+        }
+    };
+    Some((d, away_up))
+}
+
+/// Lemma L1: if near the vertex both images are strictly monotone along one direction e, one
+/// moving to larger e and the other to smaller e as they leave the vertex, they meet only at
+/// the vertex's image.
+fn opposite_monotone(a: &Segment, b: &Segment, va: &Vertex, vb: &Vertex) -> Option<DyadicBoxN> {
+    for depth in 0..=6 {
+        let (da, away_a) = near_end(a, va, depth)?;
+        let (db, away_b) = near_end(b, vb, depth)?;
+        let Some((e, _)) = find_monotone(&a.tangent, &da) else {
+            continue;
+        };
+        let (Some(sa), Some(sb)) = (
+            monotone_along(&a.tangent, &e, &da),
+            monotone_along(&b.tangent, &e, &db),
+        ) else {
+            continue;
+        };
+        // Leaving the vertex: e increases along a iff sa == away_a.
+        if (sa == away_a) != (sb == away_b) {
+            return Some(da.into_iter().chain(db).collect());
+        }
+    }
+    None
+}
+
+/// `(a(t) b(s) − a(s) b(t)) / (t − s)` for univariate polynomials of one degree n, as a
+/// polynomial of degree (n − 1, n − 1) in (t, s): exact, through the power basis.
+fn antisymmetric_quotient(a: &Poly, b: &Poly) -> Poly {
+    let (a, b) = same_degree(a, b);
+    let n = a.degrees()[0];
+    let (ma, mb) = (to_power(&a), to_power(&b));
+    let m = n.max(1) - 1;
+    let mut q = vec![Rational::new(); (m + 1) * (m + 1)];
+    for i in 0..=n {
+        for j in i + 1..=n {
+            let c = Rational::from(&ma[i] * &mb[j]) - Rational::from(&ma[j] * &mb[i]);
+            if c == 0 {
+                continue;
+            }
+            // (t^i s^j − t^j s^i) = −(ts)^i (t − s) Σ_{k<d} t^k s^{d−1−k}, d = j − i.
+            for k in 0..j - i {
+                q[(i + k) * (m + 1) + (j - 1 - k)] -= &c;
+            }
+        }
+    }
+    from_power_2d(&q, m)
+}
+
+fn same_degree(a: &Poly, b: &Poly) -> (Poly, Poly) {
+    let n = a.degrees()[0].max(b.degrees()[0]);
+    (a.elevate_to(&[n]), b.elevate_to(&[n]))
+}
+
+fn binom(n: usize, k: usize) -> Rational {
+    let mut r = Rational::from(1);
+    for i in 0..k {
+        r *= Rational::from(((n - i) as i64, (i + 1) as i64));
+    }
+    r
+}
+
+/// Power-basis coefficients of a univariate Bernstein polynomial.
+fn to_power(p: &Poly) -> Vec<Rational> {
+    let n = p.degrees()[0];
+    let b = p.coeffs();
+    (0..=n)
+        .map(|k| {
+            let mut s = Rational::new();
+            for (i, bi) in b.iter().enumerate().take(k + 1) {
+                let t = Rational::from(bi * &binom(k, i));
+                if (k - i) % 2 == 0 {
+                    s += t;
+                } else {
+                    s -= t;
+                }
+            }
+            s * binom(n, k)
+        })
+        .collect()
+}
+
+/// The Bernstein form of degree (m, m) of a power-basis polynomial `Σ q[i(m+1)+j] t^i s^j`.
+fn from_power_2d(q: &[Rational], m: usize) -> Poly {
+    // b_{ij} = Σ_{k≤i, l≤j} C(i,k) C(j,l) / (C(m,k) C(m,l)) q_{kl}.
+    let w: Vec<Vec<Rational>> = (0..=m)
+        .map(|i| {
+            (0..=m)
+                .map(|k| {
+                    if k <= i {
+                        binom(i, k) / binom(m, k)
+                    } else {
+                        Rational::new()
+                    }
+                })
+                .collect()
+        })
+        .collect();
+    let mut out = vec![Rational::new(); (m + 1) * (m + 1)];
+    for i in 0..=m {
+        for j in 0..=m {
+            let mut s = Rational::new();
+            for k in 0..=i {
+                for l in 0..=j {
+                    let c = &q[k * (m + 1) + l];
+                    if *c != 0 {
+                        s += Rational::from(&w[i][k] * &w[j][l]) * c;
+                    }
+                }
+            }
+            out[i * (m + 1) + j] = s;
+        }
+    }
+    Bernstein::new(&[m, m], out).expect("degree (m, m)")
+}
+
+/// The self-crossings of a side's image: both coincidence equations divided by `t − s`.
+fn self_crossing_system(s: &Segment) -> (Vec<Poly>, DyadicBoxN) {
+    let im = &s.image;
+    let eqs = vec![
+        antisymmetric_quotient(&im.x, &im.q),
+        antisymmetric_quotient(&im.y, &im.q),
+    ];
+    let mut domain = s.domain.clone();
+    domain.extend(s.domain.iter().copied());
+    (eqs, domain)
 }
 
 /// The crossing system of two segments: image coincidence and their constraints, in the
@@ -661,9 +1405,8 @@ fn crossing_system(a: &Segment, b: &Segment) -> (Vec<Poly>, DyadicBoxN) {
     let n = na + nb;
     let la = |p: &Poly| lift(p, n, 0);
     let lb = |p: &Poly| lift(p, n, na);
-    let coincide = |fa: &Poly, fb: &Poly| {
-        &(&la(fa) * &lb(&b.image.q)) - &(&lb(fb) * &la(&a.image.q))
-    };
+    let coincide =
+        |fa: &Poly, fb: &Poly| &(&la(fa) * &lb(&b.image.q)) - &(&lb(fb) * &la(&a.image.q));
     let mut eqs = vec![
         coincide(&a.image.x, &b.image.x),
         coincide(&a.image.y, &b.image.y),
@@ -681,9 +1424,8 @@ fn penetration_system(a: &Segment, j: &ImagePolys) -> (Vec<Poly>, DyadicBoxN) {
     let n = na + 2;
     let la = |p: &Poly| lift(p, n, 0);
     let lj = |p: &Poly| lift(p, n, na);
-    let coincide = |fa: &Poly, fj: &Poly, da: &Poly, dj: &Poly| {
-        &(&la(fa) * &lj(dj)) - &(&lj(fj) * &la(da))
-    };
+    let coincide =
+        |fa: &Poly, fj: &Poly, da: &Poly, dj: &Poly| &(&la(fa) * &lj(dj)) - &(&lj(fj) * &la(da));
     let mut eqs = vec![
         coincide(&a.image.x, &j.x, &a.image.q, &j.q),
         coincide(&a.image.y, &j.y, &a.image.q, &j.q),
@@ -749,7 +1491,15 @@ fn pieces_of(
         // The next event at or after the cursor.
         let next = ev.get(i).map_or(s.range[1], |e| e.at[0].max(cursor));
         if next > cursor {
-            let qi = qi_of(scene, s, cursor, next.min(s.range[1]), opts, &mut samples, &mut refused);
+            let qi = qi_of(
+                scene,
+                s,
+                cursor,
+                next.min(s.range[1]),
+                opts,
+                &mut samples,
+                &mut refused,
+            );
             emit(cursor, next.min(s.range[1]), qi);
         }
         let Some(e) = ev.get(i) else { break };
@@ -828,17 +1578,17 @@ fn sample_at(s: &Segment, c: &Rational) -> Option<Sample> {
     }
 }
 
+/// Drawing points as (patch, u, v) and in space.
+type Drawn = (Vec<(usize, f64, f64)>, Vec<[f64; 3]>);
+
 /// Drawing points of a segment's stretch.
-fn draw_points(
-    s: &Segment,
-    draw: &DrawPatch,
-    p0: f64,
-    p1: f64,
-    steps: usize,
-) -> (Vec<(usize, f64, f64)>, Vec<[f64; 3]>) {
+fn draw_points(s: &Segment, draw: &DrawPatch, p0: f64, p1: f64, steps: usize) -> Drawn {
     let steps = steps.max(2);
     let mut uv = Vec::new();
-    let gf = s.constraint.as_ref().map(|g| g.convert::<f64>(Precision::F64));
+    let gf = s
+        .constraint
+        .as_ref()
+        .map(|g| g.convert::<f64>(Precision::F64));
     for k in 0..=steps {
         let t = p0 + (p1 - p0) * k as f64 / steps as f64;
         match (&gf, s.edge) {
@@ -865,5 +1615,8 @@ fn draw_points(
         }
     }
     let points = uv.iter().map(|p| draw.eval(p[0], p[1])).collect();
-    (uv.into_iter().map(|p| (s.patch, p[0], p[1])).collect(), points)
+    (
+        uv.into_iter().map(|p| (s.patch, p[0], p[1])).collect(),
+        points,
+    )
 }

@@ -131,7 +131,7 @@ impl Silhouette {
 
 /// The side a crossing lies on (the first one, for a corner) and its parameter along it,
 /// as the dyadic interval containing it.
-fn side_of(id: &CrossingId) -> Vec<(Edge, Dyadic, Dyadic)> {
+pub(crate) fn side_of(id: &CrossingId) -> Vec<(Edge, Dyadic, Dyadic)> {
     let on = |fixed: usize, c: Dyadic| -> Option<Edge> {
         match (fixed, c) {
             (0, c) if c == Dyadic::ZERO => Some(Edge::U0),

@@ -20,8 +20,8 @@
 //!   along the level curves of `κ`; then the fibre of every fold point in the box is that
 //!   point alone.
 //!
-//! The rest of the domain is the union of up to four boxes around the excluded one, each
-//! solved on its own.
+//! The rest of the domain is solved with those boxes excluded
+//! ([`crate::solver::system::solve_system_excluding`]).
 
 use super::projection::{lift, side_point, ImagePolys, Projection, ProjectionError};
 use super::silhouette::View;
@@ -29,7 +29,7 @@ use crate::bernstein::Bernstein;
 use crate::model::{Model, PatchAdjacency, WeldTolerance};
 use crate::number::{Interval, Number, Precision, Rational};
 use crate::solver::dyadic::Dyadic;
-use crate::solver::system::{solve_system, DyadicBoxN, SystemOptions};
+use crate::solver::system::{solve_system_excluding, DyadicBoxN, SystemOptions};
 use crate::surface::Edge;
 
 type Poly = Bernstein<Rational>;
@@ -391,77 +391,53 @@ fn hits_in_front(
     square.extend(ps.constraints.iter().map(|c| lift(c, n, 0)));
     let front_i: Bernstein<Interval> = front.convert(Precision::F64);
     let mut count = 0;
-    for piece in complement(exclude) {
-        let mut domain = ps.domain.clone();
-        domain.extend(piece);
-        let r = solve_system(&square, &[], &domain, &opts.system);
-        if !r.unresolved.is_empty() {
+    let mut domain = ps.domain.clone();
+    domain.extend([(Dyadic::ZERO, Dyadic::ONE), (Dyadic::ZERO, Dyadic::ONE)]);
+    let exclude: Vec<DyadicBoxN> = exclude
+        .iter()
+        .map(|b| ps.domain.iter().chain(b).copied().collect())
+        .collect();
+    let r = solve_system_excluding(&square, &[], &domain, &exclude, &opts.system);
+    if !r.unresolved.is_empty() {
+        return Err(format!(
+            "the ray meets patch {j} where its intersections are not isolated (tangent to the patch, or a budget)"
+        ));
+    }
+    for root in &r.roots {
+        let inside_domain = root.inside;
+        let near_excluded = exclude.iter().any(|e| {
+            root.enclosure
+                .iter()
+                .zip(e)
+                .all(|(x, d)| x[1] >= d.0.to_f64() && x[0] <= d.1.to_f64())
+        });
+        if !inside_domain || near_excluded {
             return Err(format!(
-                "the ray meets patch {j} where its intersections are not isolated (tangent to the patch, or a budget)"
+                "the ray passes within {:.1e} of the boundary of patch {j} (or of the box around the point's own sheet)",
+                root.enclosure.iter().map(|e| e[1] - e[0]).fold(0.0, f64::max)
             ));
         }
-        for root in &r.roots {
-            if !root.inside {
-                return Err(format!(
-                    "the ray passes within {:.1e} of the boundary of patch {j} (or of an excluded box)",
-                    root.enclosure.iter().map(|e| e[1] - e[0]).fold(0.0, f64::max)
-                ));
-            }
-            let lo: Vec<Interval> = root
-                .enclosure
-                .iter()
-                .map(|e| Interval::point(e[0]))
-                .collect();
-            let hi: Vec<Interval> = root
-                .enclosure
-                .iter()
-                .map(|e| Interval::point(e[1]))
-                .collect();
-            let on = front_i.restrict_box(&lo, &hi);
-            let c = on.coeffs();
-            if c.iter().all(|x| x.hi() < 0.0) {
-                count += 1;
-            } else if !c.iter().all(|x| x.lo() > 0.0) {
-                return Err(format!(
-                    "the ray meets patch {j} at the depth of the point (the point may lie on patch {j})"
-                ));
-            }
+        let lo: Vec<Interval> = root
+            .enclosure
+            .iter()
+            .map(|e| Interval::point(e[0]))
+            .collect();
+        let hi: Vec<Interval> = root
+            .enclosure
+            .iter()
+            .map(|e| Interval::point(e[1]))
+            .collect();
+        let on = front_i.restrict_box(&lo, &hi);
+        let c = on.coeffs();
+        if c.iter().all(|x| x.hi() < 0.0) {
+            count += 1;
+        } else if !c.iter().all(|x| x.lo() > 0.0) {
+            return Err(format!(
+                "the ray meets patch {j} at the depth of the point (the point may lie on patch {j})"
+            ));
         }
     }
     Ok(count)
-}
-
-/// The unit square less a union of boxes, as boxes. Only one excluded box is supported per
-/// patch except when they are disjoint in one axis...: the general case is done by cutting
-/// the square along every excluded box's bounds and keeping the grid cells outside them.
-fn complement(exclude: &[DyadicBoxN]) -> Vec<DyadicBoxN> {
-    let mut cuts: [Vec<Dyadic>; 2] = [
-        vec![Dyadic::ZERO, Dyadic::ONE],
-        vec![Dyadic::ZERO, Dyadic::ONE],
-    ];
-    for b in exclude {
-        for (a, cut) in cuts.iter_mut().enumerate() {
-            cut.push(b[a].0);
-            cut.push(b[a].1);
-        }
-    }
-    for c in cuts.iter_mut() {
-        c.sort();
-        c.dedup();
-    }
-    let mut out = Vec::new();
-    for u in cuts[0].windows(2) {
-        for v in cuts[1].windows(2) {
-            let cell = vec![(u[0], u[1]), (v[0], v[1])];
-            let inside = exclude
-                .iter()
-                .any(|b| (0..2).all(|a| b[a].0 <= cell[a].0 && cell[a].1 <= b[a].1));
-            if !inside {
-                out.push(cell);
-            }
-        }
-    }
-    out
 }
 
 /// The interval range of a polynomial on a box given by f64 bounds.
@@ -514,20 +490,27 @@ fn f64_box(b: &DyadicBoxN) -> (Vec<f64>, Vec<f64>) {
 /// gradients of the image coordinates at points of the segment, and each row a positive
 /// multiple of a row of the numerator Jacobian), or `None`.
 pub fn injective_box(scene: &Scene, j: usize, c: &[Rational; 2]) -> Option<DyadicBoxN> {
+    injective_box_around(scene, j, c, c)
+}
+
+/// [`injective_box`] around a parameter box `[lo, hi]` (dyadic corners).
+pub fn injective_box_around(
+    scene: &Scene,
+    j: usize,
+    lo: &[Rational; 2],
+    hi: &[Rational; 2],
+) -> Option<DyadicBoxN> {
     let jac: Vec<Bernstein<Interval>> = scene.jacobians[j]
         .iter()
         .flatten()
         .map(|p| p.convert(Precision::F64))
         .collect();
-    for b in boxes_around(c, c) {
-        let (lo, hi) = f64_box(&b);
+    boxes_around(lo, hi).into_iter().find(|b| {
+        let (lo, hi) = f64_box(b);
         let r: Vec<Interval> = jac.iter().map(|p| range_on(p, &lo, &hi)).collect();
         let det = r[0].mul(&r[3]).sub(&r[1].mul(&r[2]));
-        if det.lo() > 0.0 || det.hi() < 0.0 {
-            return Some(b);
-        }
-    }
-    None
+        det.lo() > 0.0 || det.hi() < 0.0
+    })
 }
 
 /// The jet of `k / q` from the jets of `k` and `q` (q > 0), by differentiating `k = f q`.
@@ -566,11 +549,23 @@ pub fn fold_box(
     at: &Rational,
     interval: &[Rational; 2],
 ) -> Option<DyadicBoxN> {
-    let im = &scene.images[j];
     let mut lo = [at.clone(), at.clone()];
     let mut hi = [at.clone(), at.clone()];
     lo[1 - axis] = interval[0].clone();
     hi[1 - axis] = interval[1].clone();
+    fold_box_around(scene, j, &lo, &hi)
+}
+
+/// A box around the parameter box `[lo, hi]` (dyadic corners) of patch `j` on which the fold
+/// lemma holds (`proofs/ray-count.md`): the fibre of every fold point in it is that point
+/// alone. `None` if not proven.
+pub fn fold_box_around(
+    scene: &Scene,
+    j: usize,
+    lo: &[Rational; 2],
+    hi: &[Rational; 2],
+) -> Option<DyadicBoxN> {
+    let im = &scene.images[j];
     // The image direction along which the outline runs, approximately: the image of the
     // kernel's complement, i.e. a nonzero row direction of the Jacobian at the point. The
     // lemma is proven for whatever rotation is chosen; a good one only makes it succeed.
@@ -605,7 +600,7 @@ pub fn fold_box(
     let kappa = &im.x.scale(&tx) + &im.y.scale(&ty);
     let eta = &im.y.scale(&tx) - &im.x.scale(&ty);
     let polys = FoldPolys::new(&kappa, &eta, &im.q);
-    boxes_around(&lo, &hi).into_iter().find(|b| {
+    boxes_around(lo, hi).into_iter().find(|b| {
         let (blo, bhi) = f64_box(b);
         fold_signs(&polys, &blo, &bhi, 3).is_some()
     })

@@ -205,7 +205,8 @@ pub fn svg_document(title: &str, layers: &[Layer], marks: &[[f64; 2]]) -> String
 /// than boundaries), hidden pieces dashed grey, pieces whose visibility is not proven red.
 pub fn hlr_svg(model: &Model, view: &View, h: &HiddenLines, title: &str) -> String {
     let proj = Projection::new(view, model);
-    let image = |p: &HlrPiece| -> Vec<[f64; 2]> { p.points.iter().map(|&x| proj.project(x)).collect() };
+    let image =
+        |p: &HlrPiece| -> Vec<[f64; 2]> { p.points.iter().map(|&x| proj.project(x)).collect() };
     let pick = |f: &dyn Fn(&HlrPiece) -> bool| -> Vec<Vec<[f64; 2]>> {
         h.pieces.iter().filter(|p| f(p)).map(image).collect()
     };

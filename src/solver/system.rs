@@ -382,6 +382,21 @@ pub fn solve_system(
     domain: &DyadicBoxN,
     opts: &SystemOptions,
 ) -> SystemRoots {
+    solve_system_excluding(square, filters, domain, &[], opts)
+}
+
+/// [`solve_system`] on the domain less some boxes that the caller has proven to hold no root
+/// it wants (for example a box around a known root that holds no other): boxes inside one
+/// of them are not examined, and a root whose enclosure (clipped to the domain) lies inside
+/// one is not reported.
+/// A root whose enclosure straddles an excluded box's boundary is reported.
+pub fn solve_system_excluding(
+    square: &[Bernstein<Rational>],
+    filters: &[Bernstein<Rational>],
+    domain: &DyadicBoxN,
+    exclude: &[DyadicBoxN],
+    opts: &SystemOptions,
+) -> SystemRoots {
     let n = square.len();
     assert!(
         n >= 1 && domain.len() == n,
@@ -404,9 +419,18 @@ pub fn solve_system(
         .collect();
     let mut stack: Vec<(DyadicBoxN, u32, Vec<Bernstein<Interval>>)> =
         vec![(domain.clone(), 0, start)];
+    let excluded_f64: Vec<Vec<[f64; 2]>> = exclude
+        .iter()
+        .map(|b| b.iter().map(|d| [d.0.to_f64(), d.1.to_f64()]).collect())
+        .collect();
+    let in_excluded = |b: &DyadicBoxN| {
+        exclude
+            .iter()
+            .any(|e| e.iter().zip(b).all(|(x, y)| x.0 <= y.0 && y.1 <= x.1))
+    };
     while let Some((bx, depth, polys)) = stack.pop() {
         out.boxes += 1;
-        if polys.iter().any(excludes) {
+        if in_excluded(&bx) || polys.iter().any(excludes) {
             continue;
         }
         let lo: Vec<f64> = bx.iter().map(|d| d.0.to_f64()).collect();
@@ -425,7 +449,14 @@ pub fn solve_system(
                     .roots
                     .iter()
                     .any(|r| within(&enc, &r.unique_in) || within(&r.enclosure, &unique_in));
-                if !seen {
+                // Clipped to the domain: a root outside it is not wanted either.
+                let clipped: Vec<[f64; 2]> = enc
+                    .iter()
+                    .enumerate()
+                    .map(|(i, e)| [e[0].max(dlo[i]), e[1].min(dhi[i])])
+                    .collect();
+                let trivial = excluded_f64.iter().any(|e| within(&clipped, e));
+                if !seen && !trivial {
                     let enc = refine(square, &unique_in, enc, opts.refine_width);
                     let inside = enc
                         .iter()
