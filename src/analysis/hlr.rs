@@ -457,10 +457,7 @@ pub fn hidden_lines(
             let (eqs, domain, exclude) = match *job {
                 Job::Pair(a, b) => {
                     let (eqs, domain) = crossing_system(&segments[a], &segments[b]);
-                    let mut exclude: Vec<DyadicBoxN> =
-                        arc_fold_exclusion(&scene, &segments[a], &segments[b])
-                            .into_iter()
-                            .collect();
+                    let mut exclude = arc_fold_exclusion(&scene, &segments[a], &segments[b]);
                     for va in &segments[a].vertices {
                         for vb in &segments[b].vertices {
                             if va.key.matches(&vb.key) {
@@ -1195,24 +1192,46 @@ fn dyadic_above(x: f64) -> Dyadic {
 /// holds, every crossing of the arc with a curve of the patch inside B is a point the two
 /// share in space (a vertex, where both are cut), so the product of the arc's cell and the
 /// other's part inside B is excluded.
-fn arc_fold_exclusion(scene: &Scene, a: &Segment, b: &Segment) -> Option<DyadicBoxN> {
+fn arc_fold_exclusion(scene: &Scene, a: &Segment, b: &Segment) -> Vec<DyadicBoxN> {
     let (arc, other, arc_first) =
         if a.kind == LineKind::Silhouette && b.on.iter().any(|x| x.0 == a.patch) {
             (a, b, true)
         } else if b.kind == LineKind::Silhouette && a.on.iter().any(|x| x.0 == b.patch) {
             (b, a, false)
         } else {
-            return None;
+            return Vec::new();
         };
-    let lo = [arc.domain[0].0.to_rational(), arc.domain[1].0.to_rational()];
-    let hi = [arc.domain[0].1.to_rational(), arc.domain[1].1.to_rational()];
-    let bx = fold_box_around(scene, arc.patch, &lo, &hi)?;
-    let near = sub_domain(other, arc.patch, &bx)?;
-    Some(if arc_first {
-        arc.domain.iter().copied().chain(near).collect()
-    } else {
-        near.into_iter().chain(arc.domain.iter().copied()).collect()
-    })
+    let Some(g) = &arc.constraint else {
+        return Vec::new();
+    };
+    // The arc's box, or pieces of it along its parameter where one box does not do.
+    let mut out = Vec::new();
+    let mut stack = vec![(arc.domain.clone(), 0u32)];
+    while let Some((d, depth)) = stack.pop() {
+        let lo = [d[0].0.to_rational(), d[1].0.to_rational()];
+        let hi = [d[0].1.to_rational(), d[1].1.to_rational()];
+        if let Some(bx) = fold_box_around(scene, arc.patch, &lo, &hi) {
+            if let Some(near) = sub_domain(other, arc.patch, &bx) {
+                out.push(if arc_first {
+                    d.iter().copied().chain(near).collect()
+                } else {
+                    near.into_iter().chain(d.iter().copied()).collect()
+                });
+            }
+            continue;
+        }
+        if depth >= 4 {
+            continue;
+        }
+        let (l, h) = d[arc.axis];
+        let Some(mid) = l.midpoint(h) else { continue };
+        for half in [(l, mid), (mid, h)] {
+            let mut e = d.clone();
+            e[arc.axis] = half;
+            stack.push((narrow_to_curve(g, &e, arc.axis), depth + 1));
+        }
+    }
+    out
 }
 
 /// The dyadic (40 bits) at or below / above a rational in [0, 1].
@@ -1465,10 +1484,20 @@ fn pieces_of(
         .filter(|e| e.at[1] > s.range[0] && e.at[0] < s.range[1])
         .collect();
     ev.sort_by(|a, b| a.at[0].total_cmp(&b.at[0]));
-    let mut out = Vec::new();
+    let mut out: Vec<HlrPiece> = Vec::new();
     let (mut samples, mut refused) = (0, 0);
     let mut cursor = s.range[0];
     let mut emit = |p0: f64, p1: f64, qi: Result<usize, String>| {
+        // Consecutive unresolved stretches are reported as one piece (the first reason).
+        if let (Err(_), Some(last)) = (&qi, out.last_mut()) {
+            if !last.certified && last.param[1] >= p0 {
+                let (uv, pts) = draw_points(s, draw, last.param[1], p1, opts.draw_steps);
+                last.param[1] = p1;
+                last.points.extend(pts.into_iter().skip(1));
+                last.points_uv.extend(uv.into_iter().skip(1));
+                return;
+            }
+        }
         let (points_uv, points) = draw_points(s, draw, p0, p1, opts.draw_steps);
         let (qi, reason) = match qi {
             Ok(n) => (Some(n), None),
