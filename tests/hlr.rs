@@ -188,36 +188,3 @@ fn a_sphere_in_front_of_a_torus() {
     // The sphere hides part of the torus: some torus piece has QI 2.
     assert!(h.pieces.iter().any(|p| p.patch < 16 && p.qi == Some(2)));
 }
-
-#[test]
-#[ignore]
-fn debug_unresolved() {
-    let mut patches = shapes::sphere(&q(1));
-    patches.extend(shifted(shapes::sphere(&q(1)), [1, 0, -3]));
-    for dir in DIRECTIONS {
-        let h = run(patches.clone(), dir);
-        for p in h.pieces.iter().filter(|p| !p.certified) {
-            println!("{dir:?} {:?} p{} {:?} {:?}: {}", p.kind, p.patch, p.edge, p.param, p.reason.as_deref().unwrap_or(""));
-        }
-    }
-}
-
-#[test]
-#[ignore]
-fn debug_one() {
-    let mut patches = shapes::sphere(&q(1));
-    patches.extend(shifted(shapes::sphere(&q(1)), [1, 0, -3]));
-    let h = run(patches.clone(), [2, 5, -1]);
-    for p in h.pieces.iter().filter(|p| p.patch == 1) {
-        println!("{:?} p{} {:?} {:?} qi {:?}: {}", p.kind, p.patch, p.edge, p.param, p.qi, p.reason.as_deref().unwrap_or(""));
-    }
-}
-
-#[test]
-#[ignore]
-fn debug_torus() {
-    let h = run(shapes::torus(&q(2), &q(1)), [-4, -3, 2]);
-    for p in h.pieces.iter().filter(|p| !p.certified) {
-        println!("{:?} p{} {:?} {:?}: {}", p.kind, p.patch, p.edge, p.param, p.reason.as_deref().unwrap_or(""));
-    }
-}

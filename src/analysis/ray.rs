@@ -441,7 +441,7 @@ fn hits_in_front(
 }
 
 /// The interval range of a polynomial on a box given by f64 bounds.
-fn range_on(p: &Bernstein<Interval>, lo: &[f64], hi: &[f64]) -> Interval {
+pub(crate) fn range_on(p: &Bernstein<Interval>, lo: &[f64], hi: &[f64]) -> Interval {
     let l: Vec<Interval> = lo.iter().map(|x| Interval::point(*x)).collect();
     let h: Vec<Interval> = hi.iter().map(|x| Interval::point(*x)).collect();
     let r = p.restrict_box(&l, &h);
@@ -514,7 +514,7 @@ pub fn injective_box_around(
 }
 
 /// The jet of `k / q` from the jets of `k` and `q` (q > 0), by differentiating `k = f q`.
-fn quotient_jet(k: &[Interval; 6], q: &[Interval; 6]) -> Option<[Interval; 6]> {
+pub(crate) fn quotient_jet(k: &[Interval; 6], q: &[Interval; 6]) -> Option<[Interval; 6]> {
     let iq = q[0].recip()?;
     let f = k[0].mul(&iq);
     let fu = k[1].sub(&f.mul(&q[1])).mul(&iq);

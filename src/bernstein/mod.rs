@@ -17,10 +17,12 @@ mod deriv;
 mod elevate;
 mod eval;
 mod poly;
+mod power;
 mod reduce;
 mod subdivide;
 
 pub use poly::{Bernstein, BernsteinError, MAX_VARS};
+pub use power::antisymmetric_quotient;
 
 #[cfg(test)]
 mod tests;

@@ -1,0 +1,570 @@
+//! Certified hidden-line drawings of rational Bézier models (paper 000, extended to any model).
+//!
+//! The lines of the drawing are the patch boundaries (each shared edge once) and the
+//! silhouette arcs of the certified silhouette ([`super::silhouette`]). Along a line the number
+//! of surface layers in front of it (its QI) can change only where, in the image, it crosses
+//! another line (a silhouette or a boundary: the outline of some sheet), where it crosses
+//! itself, or where it passes through a patch (a penetration). So:
+//!
+//! 1. each line is cut into segments: sides into parameter intervals on which their image is
+//!    strictly monotone in one image direction, silhouettes into the arcs of the curve
+//!    solver's certified cells;
+//! 2. every pair of segments whose image boxes meet is solved as a square system (the image
+//!    coincidence plus each silhouette's equation, 2 to 4 unknowns) by the certified system
+//!    solver; every isolated root cuts both segments there, every unresolved box marks the
+//!    stretch it covers as unresolved. A segment never crosses itself (its image is monotone)
+//!    and two consecutive segments of one line that are monotone in a common direction never
+//!    cross (their union's image is monotone), so those pairs are skipped with that proof;
+//! 3. every segment is solved against every patch that is not adjacent to its own for
+//!    penetrations (the spatial coincidence), which cut it the same way;
+//! 4. between cuts the QI is constant, and is found by one certified ray test
+//!    ([`super::ray::layers_in_front`]) at a sample point; if a sample is refused, others are
+//!    tried, and a piece with no proven sample is reported unresolved.
+//!
+//! What is not proven is reported: unresolved pieces (with the reason), silhouette regions the
+//! curve solver did not resolve, and the assumption that adjacent patches do not cross each
+//! other (penetrations are searched between non-adjacent patches only).
+
+mod lemmas;
+mod network;
+mod report;
+mod systems;
+
+pub use report::{HlrReport, UnresolvedPiece};
+
+use lemmas::*;
+use network::*;
+use systems::*;
+
+use super::facing::{facing, Facing};
+use super::model_curves::zero_across;
+use super::projection::side_point;
+use super::ray::{fix_axis, layers_in_front, RayOptions, Sample, Scene};
+use super::silhouette::{silhouette, DrawPatch, View};
+use crate::model::{Model, WeldTolerance};
+use crate::number::{Precision, Rational};
+use crate::solver::precision::Ladder;
+use crate::solver::system::{solve_system_excluding, DyadicBoxN, SystemOptions, SystemRoots};
+use crate::solver::univariate::{isolate_roots_in, refine_root, Root};
+use crate::solver::CurveOptions;
+use crate::surface::Edge;
+use rayon::prelude::*;
+
+/// Budgets and drawing density.
+#[derive(Clone, Debug)]
+pub struct HlrOptions {
+    /// The silhouette solver's budgets.
+    pub curve: CurveOptions,
+    /// The ray tests' budgets.
+    pub ray: RayOptions,
+    /// Budgets of each crossing or penetration system.
+    pub crossing: SystemOptions,
+    /// Points drawn per segment piece (at least 2).
+    pub draw_steps: usize,
+}
+
+impl Default for HlrOptions {
+    fn default() -> Self {
+        HlrOptions {
+            curve: CurveOptions::default(),
+            ray: RayOptions::default(),
+            crossing: SystemOptions {
+                max_depth: 24,
+                max_boxes: 3_000,
+                refine_width: 1e-12,
+            },
+            draw_steps: 8,
+        }
+    }
+}
+
+/// What a line is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum LineKind {
+    /// A silhouette arc.
+    Silhouette,
+    /// A patch boundary (a side; a shared edge is drawn once).
+    Boundary,
+}
+
+/// A piece of a line with constant visibility.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct HlrPiece {
+    /// Silhouette or boundary.
+    pub kind: LineKind,
+    /// The patch the line lies on (for a shared edge, its first user).
+    pub patch: usize,
+    /// The side, for a boundary.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub edge: Option<Edge>,
+    /// Its parameter interval (the side parameter, or the arc's free parameter).
+    pub param: [f64; 2],
+    /// The number of surface layers in front of it (`None` if not proven).
+    pub qi: Option<usize>,
+    /// Whether the QI is proven (and constant along the piece).
+    pub certified: bool,
+    /// Why not, if not.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub reason: Option<String>,
+    /// Points in space for drawing (not certified positions).
+    pub points: Vec<[f64; 3]>,
+    /// The same points as (patch, u, v).
+    pub points_uv: Vec<(usize, f64, f64)>,
+}
+
+/// Counts of the work done.
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
+pub struct HlrStats {
+    /// Line segments.
+    pub segments: usize,
+    /// Segment pairs whose image boxes meet (solved or skipped by monotonicity).
+    pub pairs: usize,
+    /// Pairs skipped because their union's image is monotone.
+    pub monotone_pairs: usize,
+    /// Pairs culled by their image boxes.
+    pub culled_pairs: usize,
+    /// Segment-patch penetration systems solved.
+    pub penetration_systems: usize,
+    /// Boxes around shared vertices excluded by a lemma (proofs/hidden-lines.md).
+    pub excluded_vertices: usize,
+    /// Boxes examined by the crossing and penetration systems.
+    pub boxes: usize,
+    /// Ray tests run, and those refused (another sample was tried).
+    pub samples: usize,
+    /// Ray tests refused.
+    pub refused_samples: usize,
+    /// Silhouette boxes the curve solver left unresolved (their lines are not drawn).
+    pub silhouette_unresolved: usize,
+}
+
+/// A hidden-line drawing.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct HiddenLines {
+    /// The pieces, in line order.
+    pub pieces: Vec<HlrPiece>,
+    /// Per patch, its self-visible type.
+    pub facing: Vec<Facing>,
+    /// Work counts.
+    pub stats: HlrStats,
+}
+
+impl HiddenLines {
+    /// Whether every piece's visibility is proven and every silhouette region resolved.
+    pub fn is_certified(&self) -> bool {
+        self.stats.silhouette_unresolved == 0 && self.pieces.iter().all(|p| p.certified)
+    }
+}
+
+/// Why a drawing cannot be made.
+pub use super::projection::ProjectionError as HlrError;
+
+/// The hidden-line drawing of a model in a view.
+///
+/// # Errors
+/// As [`super::projection::Projection::new`] (an empty model, a zero direction, an eye not in
+/// front of every patch).
+///
+/// # Examples
+/// ```
+/// use limn::analysis::hlr::{hidden_lines, HlrOptions};
+/// use limn::analysis::silhouette::View;
+/// use limn::model::{Format, Model, WeldTolerance};
+/// use limn::number::Rational;
+/// use limn::testing::shapes;
+/// let model = Model::from_patches(Format::Json, shapes::sphere(&Rational::from(1)));
+/// let view = View::Direction([1, 2, 3].map(Rational::from));
+/// let h = hidden_lines(&model, &view, &HlrOptions::default(), WeldTolerance::Exact).unwrap();
+/// // The outline of a sphere is visible all round.
+/// assert!(h.pieces.iter().any(|p| p.kind == limn::analysis::hlr::LineKind::Silhouette));
+/// assert!(h.pieces.iter().filter(|p| p.kind == limn::analysis::hlr::LineKind::Silhouette)
+///     .all(|p| p.qi == Some(0)));
+/// ```
+pub fn hidden_lines(
+    model: &Model,
+    view: &View,
+    opts: &HlrOptions,
+    weld: WeldTolerance,
+) -> Result<HiddenLines, HlrError> {
+    let scene = Scene::new(model, view, weld)?;
+    let sil = silhouette(model, view, &opts.curve, weld, None);
+    let mut stats = HlrStats {
+        silhouette_unresolved: sil.unresolved.len(),
+        ..HlrStats::default()
+    };
+    let mut segments = boundary_segments(&scene);
+    let arcs = silhouette_segments(&scene, &sil, &mut segments);
+    segments.extend(arcs);
+    stats.segments = segments.len();
+
+    // Pairs of segments (with the boxes around shared vertices proven to hold no other
+    // crossing), self-crossings of sides, and segment-patch penetrations.
+    let mut events: Vec<Vec<Event>> = vec![Vec::new(); segments.len()];
+    let mut jobs: Vec<Job> = Vec::new();
+    for (a, sa) in segments.iter().enumerate() {
+        // Every vertex inside a segment cuts it (a junction on a side).
+        for v in &sa.vertices {
+            events[a].push(Event::cut(v.param));
+        }
+        match (&sa.constraint, &sa.monotone) {
+            (None, _) => jobs.push(Job::SelfCrossing(a)),
+            (Some(_), Some(_)) => {}
+            (Some(_), None) => events[a].push(Event::unresolved(
+                sa.range,
+                "its image is not proven free of self-crossings (a cusp of the outline?)".into(),
+            )),
+        }
+        for (b, sb) in segments.iter().enumerate().skip(a + 1) {
+            if !sa.bounds.meets_image(&sb.bounds) {
+                stats.culled_pairs += 1;
+                continue;
+            }
+            stats.pairs += 1;
+            if sa.chain == sb.chain && sa.order.abs_diff(sb.order) == 1 && common_monotone(sa, sb) {
+                stats.monotone_pairs += 1;
+                continue;
+            }
+            jobs.push(Job::Pair(a, b));
+        }
+        for (j, jb) in scene.bounds.iter().enumerate() {
+            if sa.on.iter().any(|x| x.0 == j) || sa.on.iter().any(|x| adjacent(&scene, x.0, j)) {
+                continue;
+            }
+            let overlap_depth =
+                jb.depth[0] <= sa.bounds.depth[1] && sa.bounds.depth[0] <= jb.depth[1];
+            if jb.meets_image(&sa.bounds) && overlap_depth {
+                stats.penetration_systems += 1;
+                jobs.push(Job::Penetration(a, j));
+            }
+        }
+    }
+    let results: Vec<(Job, SystemRoots, Vec<DyadicBoxN>)> = jobs
+        .par_iter()
+        .map(|job| {
+            let (eqs, domain, exclude) = match *job {
+                Job::Pair(a, b) => {
+                    let (eqs, domain) = crossing_system(&segments[a], &segments[b]);
+                    let mut exclude = arc_fold_exclusion(&scene, &segments[a], &segments[b]);
+                    for va in &segments[a].vertices {
+                        for vb in &segments[b].vertices {
+                            if va.key.matches(&vb.key) {
+                                if let Some(x) =
+                                    vertex_exclusion(&scene, &segments[a], &segments[b], va, vb)
+                                {
+                                    exclude.push(x);
+                                }
+                            }
+                        }
+                    }
+                    (eqs, domain, exclude)
+                }
+                Job::SelfCrossing(a) => {
+                    let (eqs, domain) = self_crossing_system(&segments[a]);
+                    (eqs, domain, Vec::new())
+                }
+                Job::Penetration(a, j) => {
+                    let (eqs, domain) = penetration_system(&segments[a], &scene.images[j]);
+                    (eqs, domain, Vec::new())
+                }
+            };
+            let r = solve_system_excluding(&eqs, &[], &domain, &exclude, &opts.crossing);
+            (*job, r, exclude)
+        })
+        .collect();
+    for (job, r, exclude) in &results {
+        stats.boxes += r.boxes;
+        stats.excluded_vertices += exclude.len();
+        // Which variables are each segment's parameter, and what an unresolved box means.
+        let (targets, why): (Vec<(usize, usize)>, String) = match *job {
+            Job::Pair(a, b) => {
+                let na = segments[a].domain.len();
+                (
+                    vec![(a, segments[a].axis), (b, na + segments[b].axis)],
+                    format!(
+                        "where it crosses a line of patch {} (or patch {}) is not isolated",
+                        segments[b].patch, segments[a].patch
+                    ),
+                )
+            }
+            Job::SelfCrossing(a) => (
+                vec![(a, 0), (a, 1)],
+                "where its image crosses itself is not isolated".into(),
+            ),
+            Job::Penetration(a, j) => (
+                vec![(a, segments[a].axis)],
+                format!("where it may pass through patch {j} is not isolated"),
+            ),
+        };
+        for root in &r.roots {
+            for &(s, k) in &targets {
+                events[s].push(Event::cut(root.enclosure[k]));
+            }
+        }
+        for bx in &r.unresolved {
+            for &(s, k) in &targets {
+                events[s].push(Event::unresolved(bx[k], why.clone()));
+            }
+        }
+    }
+
+    // Pieces, and their QI.
+    let draws: Vec<DrawPatch> = model
+        .patches
+        .iter()
+        .map(|p| DrawPatch::new(&p.surface))
+        .collect();
+    let per_segment: Vec<(Vec<HlrPiece>, usize, usize)> = segments
+        .par_iter()
+        .zip(events.par_iter())
+        .map(|(s, ev)| pieces_of(&scene, s, ev, &draws[s.patch], opts))
+        .collect();
+    let mut pieces = Vec::new();
+    for (p, samples, refused) in per_segment {
+        pieces.extend(p);
+        stats.samples += samples;
+        stats.refused_samples += refused;
+    }
+    let facing = model
+        .patches
+        .par_iter()
+        .map(|p| facing(&p.surface, view))
+        .collect();
+    Ok(HiddenLines {
+        pieces,
+        facing,
+        stats,
+    })
+}
+
+/// A system to solve.
+#[derive(Clone, Copy, Debug)]
+enum Job {
+    /// Two segments' image crossings.
+    Pair(usize, usize),
+    /// A side's image crossing itself.
+    SelfCrossing(usize),
+    /// A segment passing through a patch.
+    Penetration(usize, usize),
+}
+
+/// A cut or an unresolved stretch on a segment's parameter.
+#[derive(Clone, Debug)]
+struct Event {
+    at: [f64; 2],
+    unresolved: Option<String>,
+}
+
+impl Event {
+    fn cut(at: [f64; 2]) -> Event {
+        Event {
+            at,
+            unresolved: None,
+        }
+    }
+    fn unresolved(at: [f64; 2], why: String) -> Event {
+        Event {
+            at,
+            unresolved: Some(why),
+        }
+    }
+}
+
+/// Whether two patches share a corner or an edge.
+fn adjacent(scene: &Scene, a: usize, b: usize) -> bool {
+    let (ca, cb) = (&scene.adjacency.corners[a], &scene.adjacency.corners[b]);
+    ca.iter().any(|x| cb.contains(x))
+}
+
+/// The dyadic with the smallest denominator in the open interval `(lo, hi)` (lo < hi).
+fn dyadic_between(lo: f64, hi: f64) -> Option<Rational> {
+    for k in 1..=50u32 {
+        let scale = (1u64 << k) as f64;
+        let n = (lo * scale).floor() + 1.0;
+        if n / scale < hi {
+            let q = Rational::from((n as i64, 1i64 << k));
+            if q > 0 && q < 1 {
+                return Some(q);
+            }
+        }
+    }
+    None
+}
+
+/// The pieces of a segment between its events, with their QI.
+fn pieces_of(
+    scene: &Scene,
+    s: &Segment,
+    events: &[Event],
+    draw: &DrawPatch,
+    opts: &HlrOptions,
+) -> (Vec<HlrPiece>, usize, usize) {
+    let mut ev: Vec<&Event> = events
+        .iter()
+        .filter(|e| e.at[1] > s.range[0] && e.at[0] < s.range[1])
+        .collect();
+    ev.sort_by(|a, b| a.at[0].total_cmp(&b.at[0]));
+    let mut out: Vec<HlrPiece> = Vec::new();
+    let (mut samples, mut refused) = (0, 0);
+    let mut cursor = s.range[0];
+    let mut emit = |p0: f64, p1: f64, qi: Result<usize, String>| {
+        // Consecutive unresolved stretches are reported as one piece (the first reason).
+        if let (Err(_), Some(last)) = (&qi, out.last_mut()) {
+            if !last.certified && last.param[1] >= p0 {
+                let (uv, pts) = draw_points(s, draw, last.param[1], p1, opts.draw_steps);
+                last.param[1] = p1;
+                last.points.extend(pts.into_iter().skip(1));
+                last.points_uv.extend(uv.into_iter().skip(1));
+                return;
+            }
+        }
+        let (points_uv, points) = draw_points(s, draw, p0, p1, opts.draw_steps);
+        let (qi, reason) = match qi {
+            Ok(n) => (Some(n), None),
+            Err(e) => (None, Some(e)),
+        };
+        out.push(HlrPiece {
+            kind: s.kind,
+            patch: s.patch,
+            edge: s.edge,
+            param: [p0, p1],
+            certified: qi.is_some(),
+            qi,
+            reason,
+            points,
+            points_uv,
+        });
+    };
+    let mut i = 0;
+    while cursor < s.range[1] {
+        // The next event at or after the cursor.
+        let next = ev.get(i).map_or(s.range[1], |e| e.at[0].max(cursor));
+        if next > cursor {
+            let qi = qi_of(
+                scene,
+                s,
+                cursor,
+                next.min(s.range[1]),
+                opts,
+                &mut samples,
+                &mut refused,
+            );
+            emit(cursor, next.min(s.range[1]), qi);
+        }
+        let Some(e) = ev.get(i) else { break };
+        let end = e.at[1].min(s.range[1]).max(cursor);
+        if let Some(why) = &e.unresolved {
+            if end > next {
+                emit(next, end, Err(why.clone()));
+            }
+        }
+        cursor = cursor.max(end);
+        i += 1;
+    }
+    (out, samples, refused)
+}
+
+/// The QI of a segment's stretch `[p0, p1]`, from the first proven sample.
+fn qi_of(
+    scene: &Scene,
+    s: &Segment,
+    p0: f64,
+    p1: f64,
+    opts: &HlrOptions,
+    samples: &mut usize,
+    refused: &mut usize,
+) -> Result<usize, String> {
+    let w = p1 - p0;
+    let mut last = String::from("no sample point found in the piece");
+    for (a, b) in [(0.25, 0.75), (0.1, 0.3), (0.7, 0.9)] {
+        let Some(c) = dyadic_between(p0 + a * w, p0 + b * w) else {
+            continue;
+        };
+        let Some(sample) = sample_at(s, &c) else {
+            continue;
+        };
+        *samples += 1;
+        match layers_in_front(scene, &sample, &opts.ray) {
+            Ok(n) => return Ok(n),
+            Err(e) => {
+                *refused += 1;
+                last = e;
+            }
+        }
+    }
+    Err(last)
+}
+
+/// The sample point of a segment at parameter `c`.
+fn sample_at(s: &Segment, c: &Rational) -> Option<Sample> {
+    match (&s.constraint, s.edge) {
+        (None, Some(edge)) => Some(Sample::Exact {
+            patch: s.patch,
+            uv: side_point(edge, c),
+        }),
+        (Some(g), _) => {
+            let m = 1 - s.axis;
+            let line = fix_axis(g, s.axis, c);
+            let stats = &mut Default::default();
+            let (lo, hi) = s.domain[m];
+            let roots = isolate_roots_in(&line, lo, hi, &Ladder::default(), 40, stats);
+            if roots.roots.len() != 1 || !roots.unresolved.is_empty() {
+                return None;
+            }
+            let r = refine_root(&line, roots.roots[0], 1e-12, &Ladder::default(), stats);
+            let Root::Between { lo, hi } = r else {
+                return None;
+            };
+            Some(Sample::Silhouette {
+                patch: s.patch,
+                axis: s.axis,
+                at: c.clone(),
+                interval: [lo.to_rational(), hi.to_rational()],
+                g: g.clone(),
+            })
+        }
+        (None, None) => None,
+    }
+}
+
+/// Drawing points as (patch, u, v) and in space.
+type Drawn = (Vec<(usize, f64, f64)>, Vec<[f64; 3]>);
+
+/// Drawing points of a segment's stretch.
+fn draw_points(s: &Segment, draw: &DrawPatch, p0: f64, p1: f64, steps: usize) -> Drawn {
+    let steps = steps.max(2);
+    let mut uv = Vec::new();
+    let gf = s
+        .constraint
+        .as_ref()
+        .map(|g| g.convert::<f64>(Precision::F64));
+    for k in 0..=steps {
+        let t = p0 + (p1 - p0) * k as f64 / steps as f64;
+        match (&gf, s.edge) {
+            (None, Some(edge)) => {
+                let p = match edge {
+                    Edge::V0 => [t, 0.0],
+                    Edge::V1 => [t, 1.0],
+                    Edge::U0 => [0.0, t],
+                    Edge::U1 => [1.0, t],
+                };
+                uv.push(p);
+            }
+            (Some(g), _) => {
+                let m = 1 - s.axis;
+                let (lo, hi) = (s.domain[m].0.to_f64(), s.domain[m].1.to_f64());
+                if let Some(x) = zero_across(g, m, t, lo, hi) {
+                    let mut p = [0.0; 2];
+                    p[m] = x;
+                    p[s.axis] = t;
+                    uv.push(p);
+                }
+            }
+            (None, None) => {}
+        }
+    }
+    let points = uv.iter().map(|p| draw.eval(p[0], p[1])).collect();
+    (
+        uv.into_iter().map(|p| (s.patch, p[0], p[1])).collect(),
+        points,
+    )
+}
