@@ -21,6 +21,9 @@ pub const DEMO_TOLERANCE: f64 = 1e-3;
 /// The view direction of `limn demo`.
 pub const DEMO_DIRECTION: &str = "1,2,3";
 
+/// The view direction of the demo's hidden-line drawing (from above, in front of the spout).
+pub const DEMO_HLR_DIRECTION: &str = "2,3,-2";
+
 /// The Newell teapot (32 bicubic patches), embedded so that `limn demo` needs no files.
 pub const EMBEDDED_TEAPOT: &str = include_str!("../fixtures/bezier/teapot.bpt");
 
@@ -135,7 +138,9 @@ enum Command {
     },
     /// Runs the main job on the embedded Newell teapot (no files needed).
     Demo {
-        /// Output format: a text summary, the silhouette report (JSON), or its drawing (SVG).
+        /// Output format: a text summary and the silhouette report (JSON, OBJ), or the
+        /// hidden-line drawing (SVG, from 2,3,-2: silhouettes and patch boundaries, hidden
+        /// lines dashed; it takes some seconds).
         #[arg(long, value_enum, default_value_t = CurveFormat::Text)]
         format: CurveFormat,
     },
@@ -523,6 +528,18 @@ where
                 Some(Format::Bpt),
             )
             .map_err(|e| CliError::input(e.to_string()))?;
+            if format == CurveFormat::Svg {
+                let view =
+                    View::Direction(parse_vector(DEMO_HLR_DIRECTION).map_err(CliError::input)?);
+                let h = hidden_lines(&m, &view, &HlrOptions::default(), WeldTolerance::Exact)
+                    .map_err(|e| CliError::input(e.to_string()))?;
+                let unresolved = h.pieces.iter().filter(|p| !p.certified).count();
+                let title = format!(
+                    "{name}: hidden lines from ({DEMO_HLR_DIRECTION}), {} pieces, {unresolved} unresolved (red)",
+                    h.pieces.len()
+                );
+                return w(out.write_all(hlr_svg(&m, &view, &h, &title).as_bytes()));
+            }
             let view = View::Direction(parse_vector(DEMO_DIRECTION).map_err(CliError::input)?);
             let start = std::time::Instant::now();
             let tol = DEMO_TOLERANCE * m.diagonal();
@@ -556,8 +573,6 @@ where
     }
 }
 
-/// A silhouette result as JSON, SVG or text.
-/// A worker pool of `threads` threads (all cores if `None`).
 /// A model read for a curve command, with what the run needs.
 struct Loaded {
     name: String,

@@ -164,6 +164,36 @@ pub fn krawczyk(square: &[Bernstein<Interval>]) -> Option<Vec<Interval>> {
     Some(k)
 }
 
+/// A cheap necessary condition for Krawczyk's test to succeed on the grown box, from the
+/// polynomials already on the box: with C the inverse of the midpoint of the interval
+/// Jacobian on the box, every row of `|I − C J|` sums to less than 1. It only decides whether
+/// to run the (costly) test; a box that fails it is subdivided, never decided by it.
+fn worth_testing(square: &[Bernstein<Interval>]) -> bool {
+    let n = square.len();
+    let jac: Vec<Vec<Interval>> = square
+        .iter()
+        .map(|f| (0..n).map(|j| range(&f.deriv(j))).collect())
+        .collect();
+    let mid: Vec<Vec<f64>> = jac
+        .iter()
+        .map(|r| r.iter().map(|x| 0.5 * (x.lo() + x.hi())).collect())
+        .collect();
+    let Some(c) = inverse(&mid) else {
+        return false;
+    };
+    c.iter().enumerate().all(|(i, ci)| {
+        let mut sum = 0.0;
+        for j in 0..n {
+            let mut m = Interval::point(if i == j { 1.0 } else { 0.0 });
+            for (cil, jl) in ci.iter().zip(&jac) {
+                m = m.sub(&Interval::point(*cil).mul(&jl[j]));
+            }
+            sum += m.lo().abs().max(m.hi().abs());
+        }
+        sum < 1.0
+    })
+}
+
 /// The polynomials restricted to a box given in their current coordinates by f64 bounds
 /// (exact dyadics here), as interval enclosures.
 fn restrict_all(ps: &[Bernstein<Interval>], lo: &[f64], hi: &[f64]) -> Vec<Bernstein<Interval>> {
@@ -438,7 +468,12 @@ pub fn solve_system_excluding(
         // The box grown by an eighth of its width on each side (exact in f64: dyadic).
         let glo: Vec<f64> = lo.iter().zip(&hi).map(|(a, b)| a - (b - a) / 8.0).collect();
         let ghi: Vec<f64> = lo.iter().zip(&hi).map(|(a, b)| b + (b - a) / 8.0).collect();
-        if let Some(enc) = test_box(&whole, &glo, &ghi) {
+        let tested = if worth_testing(&polys[..n]) {
+            test_box(&whole, &glo, &ghi)
+        } else {
+            None
+        };
+        if let Some(enc) = tested {
             let unique_in: Vec<[f64; 2]> = glo.iter().zip(&ghi).map(|(a, b)| [*a, *b]).collect();
             let outside = enc
                 .iter()

@@ -171,32 +171,48 @@ pub(super) fn graph_curvature(
 /// holds, every crossing of the arc with a curve of the patch inside B is a point the two
 /// share in space (a vertex, where both are cut), so the product of the arc's cell and the
 /// other's part inside B is excluded.
-pub(super) fn arc_fold_exclusion(scene: &Scene, a: &Segment, b: &Segment) -> Vec<DyadicBoxN> {
-    let (arc, other, arc_first) =
+pub(super) fn arc_fold_exclusion(
+    a: &Segment,
+    b: &Segment,
+    covers: &[Vec<(DyadicBoxN, DyadicBoxN)>],
+    ia: usize,
+    ib: usize,
+) -> Vec<DyadicBoxN> {
+    let (arc, other, cover, arc_first) =
         if a.kind == LineKind::Silhouette && b.on.iter().any(|x| x.0 == a.patch) {
-            (a, b, true)
+            (a, b, &covers[ia], true)
         } else if b.kind == LineKind::Silhouette && a.on.iter().any(|x| x.0 == b.patch) {
-            (b, a, false)
+            (b, a, &covers[ib], false)
         } else {
             return Vec::new();
         };
+    cover
+        .iter()
+        .filter_map(|(d, bx)| {
+            let near = sub_domain(other, arc.patch, bx)?;
+            Some(if arc_first {
+                d.iter().copied().chain(near).collect()
+            } else {
+                near.into_iter().chain(d.iter().copied()).collect()
+            })
+        })
+        .collect()
+}
+
+/// The fold boxes of a silhouette arc (computed once per arc): its cell, or pieces of it
+/// along its parameter where one box does not do, each with a box of its patch around it on
+/// which the fold lemma holds.
+pub(super) fn fold_cover(scene: &Scene, arc: &Segment) -> Vec<(DyadicBoxN, DyadicBoxN)> {
     let Some(g) = &arc.constraint else {
         return Vec::new();
     };
-    // The arc's box, or pieces of it along its parameter where one box does not do.
     let mut out = Vec::new();
     let mut stack = vec![(arc.domain.clone(), 0u32)];
     while let Some((d, depth)) = stack.pop() {
         let lo = [d[0].0.to_rational(), d[1].0.to_rational()];
         let hi = [d[0].1.to_rational(), d[1].1.to_rational()];
         if let Some(bx) = fold_box_around(scene, arc.patch, &lo, &hi) {
-            if let Some(near) = sub_domain(other, arc.patch, &bx) {
-                out.push(if arc_first {
-                    d.iter().copied().chain(near).collect()
-                } else {
-                    near.into_iter().chain(d.iter().copied()).collect()
-                });
-            }
+            out.push((d, bx));
             continue;
         }
         if depth >= 4 {

@@ -6,20 +6,22 @@
 //! another line (a silhouette or a boundary: the outline of some sheet), where it crosses
 //! itself, or where it passes through a patch (a penetration). So:
 //!
-//! 1. each line is cut into segments: sides into parameter intervals on which their image is
-//!    strictly monotone in one image direction, silhouettes into the arcs of the curve
-//!    solver's certified cells;
+//! 1. each line is cut into segments: a side is one segment; a silhouette arc of the curve
+//!    solver's certified cells is cut at dyadic parameters until its image is monotone in one
+//!    image direction. Where lines meet in space (patch corners, silhouette junctions on sides,
+//!    cut points) they share a vertex, and a side is cut at each junction on it;
 //! 2. every pair of segments whose image boxes meet is solved as a square system (the image
 //!    coincidence plus each silhouette's equation, 2 to 4 unknowns) by the certified system
-//!    solver; every isolated root cuts both segments there, every unresolved box marks the
-//!    stretch it covers as unresolved. A segment never crosses itself (its image is monotone)
-//!    and two consecutive segments of one line that are monotone in a common direction never
-//!    cross (their union's image is monotone), so those pairs are skipped with that proof;
+//!    solver, a side's self-crossings by the same equations divided exactly by `t − s`;
+//!    every isolated root cuts both segments, every unresolved box marks the stretch it covers
+//!    as unresolved. Boxes around shared vertices, and around a silhouette arc where the fold
+//!    lemma holds, are excluded with a proof that they hold no other crossing (the lemmas of
+//!    `proofs/hidden-lines.md`, in `lemmas.rs`);
 //! 3. every segment is solved against every patch that is not adjacent to its own for
 //!    penetrations (the spatial coincidence), which cut it the same way;
-//! 4. between cuts the QI is constant, and is found by one certified ray test
-//!    ([`super::ray::layers_in_front`]) at a sample point; if a sample is refused, others are
-//!    tried, and a piece with no proven sample is reported unresolved.
+//! 4. between cuts the QI is constant (`proofs/hidden-lines.md`, claim 1), and is found by one
+//!    certified ray test ([`super::ray::layers_in_front`]) at a sample point; if a sample is
+//!    refused, others are tried, and a piece with no proven sample is reported unresolved.
 //!
 //! What is not proven is reported: unresolved pieces (with the reason), silhouette regions the
 //! curve solver did not resolve, and the assumption that adjacent patches do not cross each
@@ -147,7 +149,12 @@ pub struct HiddenLines {
     pub facing: Vec<Facing>,
     /// Work counts.
     pub stats: HlrStats,
+    /// What the result assumes without proof.
+    pub assumptions: Vec<String>,
 }
+
+/// The assumption of every drawing of a model with adjacent patches.
+pub const ADJACENT_ASSUMPTION: &str = "patches that share a corner or an edge do not cross each other away from their common points (penetrations are searched between non-adjacent patches only)";
 
 impl HiddenLines {
     /// Whether every piece's visibility is proven and every silhouette region resolved.
@@ -238,13 +245,16 @@ pub fn hidden_lines(
             }
         }
     }
+    // The fold boxes of each silhouette arc, once.
+    let covers: Vec<Vec<(DyadicBoxN, DyadicBoxN)>> =
+        segments.par_iter().map(|s| fold_cover(&scene, s)).collect();
     let results: Vec<(Job, SystemRoots, Vec<DyadicBoxN>)> = jobs
         .par_iter()
         .map(|job| {
             let (eqs, domain, exclude) = match *job {
                 Job::Pair(a, b) => {
                     let (eqs, domain) = crossing_system(&segments[a], &segments[b]);
-                    let mut exclude = arc_fold_exclusion(&scene, &segments[a], &segments[b]);
+                    let mut exclude = arc_fold_exclusion(&segments[a], &segments[b], &covers, a, b);
                     for va in &segments[a].vertices {
                         for vb in &segments[b].vertices {
                             if va.key.matches(&vb.key) {
@@ -329,10 +339,17 @@ pub fn hidden_lines(
         .par_iter()
         .map(|p| facing(&p.surface, view))
         .collect();
+    let assumptions =
+        if scene.adjacency.edges.iter().any(|e| e.len() > 1) || model.patches.len() > 1 {
+            vec![ADJACENT_ASSUMPTION.to_string()]
+        } else {
+            Vec::new()
+        };
     Ok(HiddenLines {
         pieces,
         facing,
         stats,
+        assumptions,
     })
 }
 

@@ -37,6 +37,8 @@ pub struct HlrReport {
     pub facing: Vec<Facing>,
     /// Work counts.
     pub stats: HlrStats,
+    /// What the result assumes without proof.
+    pub assumptions: Vec<String>,
     /// Wall time in milliseconds.
     pub time_ms: f64,
     /// Worker threads.
@@ -71,6 +73,7 @@ impl HlrReport {
             pieces: h.pieces.clone(),
             facing: h.facing.clone(),
             stats: h.stats.clone(),
+            assumptions: h.assumptions.clone(),
             time_ms,
             threads,
         }
@@ -125,6 +128,9 @@ impl HlrReport {
         }
         if self.unresolved.len() > 10 {
             t += &format!("  ... and {} more\n", self.unresolved.len() - 10);
+        }
+        for a in &self.assumptions {
+            t += &format!("assumed: {a}\n");
         }
         t += &format!("time: {:.1} ms on {} threads\n", self.time_ms, self.threads);
         t

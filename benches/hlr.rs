@@ -1,0 +1,77 @@
+//! Hidden-line drawings (issue 5): the torus and two spheres from one skew direction (criterion
+//! medians, 1 and 2 threads), and the teapot from (2,3,-2) and (1,2,3), timed as whole runs
+//! (each takes seconds: `LIMN_BENCH_TEAPOT=1` to include them, a few runs, the median printed).
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use limn::analysis::hlr::{hidden_lines, HlrOptions};
+use limn::analysis::silhouette::View;
+use limn::model::{Format, Model, WeldTolerance};
+use limn::number::Rational;
+use limn::testing::shapes;
+
+fn view(d: [i64; 3]) -> View {
+    View::Direction(d.map(Rational::from))
+}
+
+fn benches(c: &mut Criterion) {
+    let opts = HlrOptions::default();
+    let torus = Model::from_patches(
+        Format::Json,
+        shapes::torus(&Rational::from(2), &Rational::from(1)),
+    );
+    let mut spheres = shapes::sphere(&Rational::from(1));
+    spheres.extend(
+        shapes::sphere(&Rational::from(1)).into_iter().map(|p| {
+            p.map_points(|x| std::array::from_fn(|k| Rational::from(&x[k] + [1, 0, -3][k])))
+        }),
+    );
+    let spheres = Model::from_patches(Format::Json, spheres);
+    let mut g = c.benchmark_group("hlr");
+    g.sample_size(10);
+    for threads in [1, 2] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        for (name, m) in [("torus", &torus), ("two-spheres", &spheres)] {
+            g.bench_function(format!("{name}-1,2,3-{threads}-threads"), |b| {
+                b.iter(|| {
+                    pool.install(|| hidden_lines(m, &view([1, 2, 3]), &opts, WeldTolerance::Exact))
+                        .unwrap()
+                })
+            });
+        }
+    }
+    g.finish();
+    if std::env::var_os("LIMN_BENCH_TEAPOT").is_some() {
+        let teapot = limn::testing::teapot();
+        for d in [[2, 3, -2], [1, 2, 3]] {
+            for threads in [1, 2] {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .unwrap();
+                let mut times: Vec<f64> = (0..3)
+                    .map(|_| {
+                        let t = std::time::Instant::now();
+                        let h = pool
+                            .install(|| {
+                                hidden_lines(&teapot, &view(d), &opts, WeldTolerance::Exact)
+                            })
+                            .unwrap();
+                        std::hint::black_box(h);
+                        t.elapsed().as_secs_f64()
+                    })
+                    .collect();
+                times.sort_by(f64::total_cmp);
+                println!(
+                    "hlr/teapot-{d:?}-{threads}-threads: median {:.2} s of 3 runs",
+                    times[1]
+                );
+            }
+        }
+    }
+}
+
+criterion_group!(hlr_benches, benches);
+criterion_main!(hlr_benches);

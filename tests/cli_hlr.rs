@@ -1,0 +1,128 @@
+//! `limn hlr`: the JSON contract on two squares, one in front of the other (a closed form),
+//! SVG output, bad arguments (exit 2, one line), no overwrite without --force.
+
+use serde_json::Value;
+use std::path::PathBuf;
+
+mod common;
+use common::limn;
+
+fn tmp(name: &str) -> PathBuf {
+    common::tmp("cli_hlr", name)
+}
+
+/// The square [0,2]² at z = 0 and the square [1,3]² at z = 1 above it.
+fn two_squares() -> PathBuf {
+    let path = tmp("two_squares.json");
+    let square = |x0: i64, z: i64| {
+        let x1 = x0 + 2;
+        format!(
+            r#"{{"kind":"bezier","degree":[1,1],"points":[[{x0},{x0},{z}],[{x0},{x1},{z}],[{x1},{x0},{z}],[{x1},{x1},{z}]]}}"#
+        )
+    };
+    let text = format!(r#"{{"patches":[{},{}]}}"#, square(0, 0), square(1, 1));
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+#[test]
+fn two_squares_json_contract_and_closed_form() {
+    let model = two_squares();
+    let (code, out, err) = limn(&[
+        "hlr",
+        model.to_str().unwrap(),
+        "--dir",
+        "0,0,-1",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(code, Some(0), "{err}");
+    let r: Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(r["certified"], true, "{out}");
+    assert_eq!(r["view"]["dir"], serde_json::json!([0.0, 0.0, -1.0]));
+    assert!(r["unresolved"].as_array().unwrap().is_empty());
+    assert!(r["stats"]["pairs"].as_u64().unwrap() > 0);
+    assert_eq!(r["facing"].as_array().unwrap().len(), 2);
+    let pieces = r["pieces"].as_array().unwrap();
+    let mut hidden = 0;
+    for p in pieces {
+        assert_eq!(p["kind"], "boundary");
+        assert_eq!(p["certified"], true);
+        let pts = p["points"].as_array().unwrap();
+        assert_eq!(pts.len(), p["points_uv"].as_array().unwrap().len());
+        let qi = p["qi"].as_u64().unwrap();
+        // Closed form: a point of the lower square (z = 0) strictly inside the upper square's
+        // image (1 < x, y < 3) is hidden once; everything else is visible.
+        for pt in pts.iter().skip(1).take(pts.len().saturating_sub(2)) {
+            let c: Vec<f64> = pt
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|x| x.as_f64().unwrap())
+                .collect();
+            let inside = c[2] == 0.0 && c[0] > 1.0 && c[1] > 1.0;
+            assert_eq!(qi, u64::from(inside), "{p}");
+        }
+        hidden += usize::from(qi == 1);
+    }
+    assert_eq!(
+        hidden, 2,
+        "the two halves of the lower square's sides under the upper one"
+    );
+}
+
+#[test]
+fn svg_output_and_no_overwrite() {
+    let model = two_squares();
+    let out = tmp("squares.svg");
+    let _ = std::fs::remove_file(&out);
+    let args = [
+        "hlr",
+        model.to_str().unwrap(),
+        "--dir",
+        "1,2,-6",
+        "--format",
+        "svg",
+        "-o",
+        out.to_str().unwrap(),
+    ];
+    let (code, _, err) = limn(&args);
+    assert_eq!(code, Some(0), "{err}");
+    let svg = std::fs::read_to_string(&out).unwrap();
+    assert!(svg.starts_with("<svg") && svg.contains("stroke-dasharray"));
+    let (code, _, err) = limn(&args);
+    assert_eq!(code, Some(2));
+    assert!(err.contains("exists"), "{err}");
+    assert_eq!(std::fs::read_to_string(&out).unwrap(), svg);
+}
+
+#[test]
+fn bad_arguments_exit_2_with_one_line() {
+    let model = two_squares();
+    let m = model.to_str().unwrap();
+    for (args, needle) in [
+        (vec!["hlr", m, "--dir", "0,0,0"], "zero"),
+        (vec!["hlr", m, "--dir", "1,2"], "three numbers"),
+        (vec!["hlr", m, "--dir", "0,0,-1", "--tol", "1e-6"], "--tol"),
+        // An eye between the two squares sees them on both sides.
+        (vec!["hlr", m, "--eye", "2,2,1/2"], "in front of the eye"),
+        (
+            vec![
+                "hlr",
+                "fixtures/meshes/keenan/spot/spot_control_mesh.obj",
+                "--dir",
+                "1,2,3",
+            ],
+            "polygon mesh",
+        ),
+        (
+            vec!["hlr", "no/such/file.json", "--dir", "1,2,3"],
+            "no/such/file.json",
+        ),
+    ] {
+        let (code, out, err) = limn(&args);
+        assert_eq!(code, Some(2), "{args:?}: {out}{err}");
+        assert_eq!(err.trim().lines().count(), 1, "{args:?}: {err}");
+        assert!(err.contains(needle), "{args:?}: {err}");
+    }
+}
