@@ -93,17 +93,54 @@ fn reference_qi(shapes: &[Shape], p: [f64; 3], d: [f64; 3]) -> Option<usize> {
     Some(n)
 }
 
+/// A viewer: a parallel direction (from the viewer into the scene) or an eye point.
+#[derive(Clone, Copy, Debug)]
+enum Viewer {
+    Dir([f64; 3]),
+    Eye([f64; 3]),
+}
+
+/// The reference QI of a point: ray hits between the point and the viewer.
+fn reference_at(shapes: &[Shape], p: [f64; 3], viewer: Viewer) -> Option<usize> {
+    let unit = |d: [f64; 3]| {
+        let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+        (d.map(|x| x / n), n)
+    };
+    match viewer {
+        Viewer::Dir(d) => reference_qi(shapes, p, unit(d).0),
+        Viewer::Eye(e) => {
+            let (d, dist) = unit([p[0] - e[0], p[1] - e[1], p[2] - e[2]]);
+            let mut n = 0;
+            for s in shapes {
+                let ts = roots(*s, p, d)?;
+                if ts.iter().any(|t| (t - dist).abs() < 1e-6) {
+                    return None;
+                }
+                n += ts.iter().filter(|t| **t < dist).count();
+            }
+            Some(n)
+        }
+    }
+}
+
 /// Checks every certified piece against the reference at its interior drawn points; returns
 /// (points checked, pieces, certified pieces).
 fn check(h: &HiddenLines, shapes: &[Shape], d: [f64; 3], what: &str) -> (usize, usize, usize) {
-    let norm = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-    let d = d.map(|x| x / norm);
+    check_viewer(h, shapes, Viewer::Dir(d), what)
+}
+
+fn check_viewer(
+    h: &HiddenLines,
+    shapes: &[Shape],
+    viewer: Viewer,
+    what: &str,
+) -> (usize, usize, usize) {
     let mut checked = 0;
     for p in &h.pieces {
         let Some(qi) = p.qi else { continue };
         let n = p.points.len();
         for pt in p.points.iter().skip(1).take(n.saturating_sub(2)) {
-            if let Some(want) = reference_qi(shapes, *pt, d) {
+            if let Some(want) = reference_at(shapes, *pt, viewer) {
                 assert_eq!(
                     qi, want,
                     "{what}: {:?} piece on patch {} {:?} param {:?} at {pt:?}",
@@ -187,4 +224,30 @@ fn a_sphere_in_front_of_a_torus() {
     assert!(checked > 100);
     // The sphere hides part of the torus: some torus piece has QI 2.
     assert!(h.pieces.iter().any(|p| p.patch < 16 && p.qi == Some(2)));
+}
+
+#[test]
+fn two_spheres_in_perspective() {
+    let shapes_ = [
+        Shape::Sphere([0.0; 3], 1.0),
+        Shape::Sphere([1.0, 0.0, -3.0], 1.0),
+    ];
+    let mut patches = shapes::sphere(&q(1));
+    patches.extend(shifted(shapes::sphere(&q(1)), [1, 0, -3]));
+    let model = Model::from_patches(Format::Json, patches);
+    let eye = [-2, -3, 9];
+    let view = View::Eye(eye.map(Rational::from));
+    let h = hidden_lines(&model, &view, &HlrOptions::default(), WeldTolerance::Exact).unwrap();
+    let (checked, pieces, certified) = check_viewer(
+        &h,
+        &shapes_,
+        Viewer::Eye(eye.map(|x| x as f64)),
+        "spheres from an eye",
+    );
+    println!(
+        "spheres from {eye:?}: {pieces} pieces, {certified} certified, {checked} points checked"
+    );
+    assert!(checked > 200, "{checked}");
+    // The upper sphere hides part of the lower one.
+    assert!(h.pieces.iter().any(|p| p.patch >= 8 && p.qi == Some(2)));
 }
