@@ -58,17 +58,8 @@ enum Command {
     Silhouette {
         /// The model file.
         model: PathBuf,
-        /// Parallel view direction x,y,z (from the viewer into the scene).
-        #[arg(
-            long,
-            allow_hyphen_values = true,
-            conflicts_with = "eye",
-            required_unless_present = "eye"
-        )]
-        dir: Option<String>,
-        /// Perspective eye point x,y,z.
-        #[arg(long, allow_hyphen_values = true)]
-        eye: Option<String>,
+        #[command(flatten)]
+        view: ViewArgs,
         /// Output format.
         #[arg(long, value_enum, default_value_t = CurveFormat::Text)]
         format: CurveFormat,
@@ -105,17 +96,8 @@ enum Command {
     Hlr {
         /// The model file.
         model: PathBuf,
-        /// Parallel view direction x,y,z (from the viewer into the scene).
-        #[arg(
-            long,
-            allow_hyphen_values = true,
-            conflicts_with = "eye",
-            required_unless_present = "eye"
-        )]
-        dir: Option<String>,
-        /// Perspective eye point x,y,z.
-        #[arg(long, allow_hyphen_values = true)]
-        eye: Option<String>,
+        #[command(flatten)]
+        view: ViewArgs,
         /// Output format.
         #[arg(long, value_enum, default_value_t = HlrFormat::Text)]
         format: HlrFormat,
@@ -144,6 +126,22 @@ enum Command {
         #[arg(long, value_enum, default_value_t = CurveFormat::Text)]
         format: CurveFormat,
     },
+}
+
+/// The view of the commands that depend on one.
+#[derive(clap::Args, Debug)]
+struct ViewArgs {
+    /// Parallel view direction x,y,z (from the viewer into the scene).
+    #[arg(
+        long,
+        allow_hyphen_values = true,
+        conflicts_with = "eye",
+        required_unless_present = "eye"
+    )]
+    dir: Option<String>,
+    /// Perspective eye point x,y,z.
+    #[arg(long, allow_hyphen_values = true)]
+    eye: Option<String>,
 }
 
 /// The options shared by the commands that solve curves on a model.
@@ -300,15 +298,14 @@ where
         }
         Command::Silhouette {
             model,
-            dir,
-            eye,
+            view,
             format,
             run,
             method,
             certificate,
         } => {
             check_run_arguments(&run)?;
-            let view = parse_view(dir, eye)?;
+            let view = parse_view(view)?;
             refuse_overwrite(run.output.iter().chain(&certificate), run.force)?;
             if certificate.is_some() && method != Method::Certified {
                 return Err(CliError::input(
@@ -406,13 +403,12 @@ where
         }
         Command::Hlr {
             model,
-            dir,
-            eye,
+            view,
             format,
             run,
         } => {
             check_run_arguments(&run)?;
-            let view = parse_view(dir, eye)?;
+            let view = parse_view(view)?;
             if run.tol.is_some() {
                 return Err(CliError::input(
                     "--tol: not supported by hlr yet (the visibility of each piece is proven; the drawn points are not)",
@@ -698,8 +694,8 @@ fn thread_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, CliError> {
 }
 
 /// The view from `--dir` or `--eye`.
-fn parse_view(dir: Option<String>, eye: Option<String>) -> Result<View, CliError> {
-    let view = match (dir, eye) {
+fn parse_view(args: ViewArgs) -> Result<View, CliError> {
+    let view = match (args.dir, args.eye) {
         (Some(d), _) => {
             View::Direction(parse_vector(&d).map_err(|e| CliError::input(format!("--dir: {e}")))?)
         }

@@ -132,29 +132,16 @@ pub fn krawczyk(square: &[Bernstein<Interval>]) -> Option<Vec<Interval>> {
     let half = Interval::point(0.5);
     let y = vec![half; n];
     let fy: Vec<Interval> = square.iter().map(|f| f.eval(&y)).collect();
-    let jac: Vec<Vec<Interval>> = square
-        .iter()
-        .map(|f| (0..n).map(|j| range(&f.deriv(j))).collect())
-        .collect();
-    let mid: Vec<Vec<f64>> = jac
-        .iter()
-        .map(|r| r.iter().map(|x| 0.5 * (x.lo() + x.hi())).collect())
-        .collect();
-    let c = inverse(&mid)?;
+    let (c, m) = preconditioned(square)?;
     let dx = Interval::new(-0.5, 0.5);
     let mut k = Vec::with_capacity(n);
-    for (i, ci) in c.iter().enumerate() {
+    for (ci, mi) in c.iter().zip(&m) {
         let mut acc = half;
         for (cij, fyj) in ci.iter().zip(&fy) {
             acc = acc.sub(&Interval::point(*cij).mul(fyj));
         }
-        for j in 0..n {
-            // (I − C J)_ij
-            let mut m = Interval::point(if i == j { 1.0 } else { 0.0 });
-            for (cil, jl) in ci.iter().zip(&jac) {
-                m = m.sub(&Interval::point(*cil).mul(&jl[j]));
-            }
-            acc = acc.add(&m.mul(&dx));
+        for mij in mi {
+            acc = acc.add(&mij.mul(&dx));
         }
         if !(acc.lo() > 0.0 && acc.hi() < 1.0) {
             return None;
@@ -164,11 +151,12 @@ pub fn krawczyk(square: &[Bernstein<Interval>]) -> Option<Vec<Interval>> {
     Some(k)
 }
 
-/// A cheap necessary condition for Krawczyk's test to succeed on the grown box, from the
-/// polynomials already on the box: with C the inverse of the midpoint of the interval
-/// Jacobian on the box, every row of `|I − C J|` sums to less than 1. It only decides whether
-/// to run the (costly) test; a box that fails it is subdivided, never decided by it.
-fn worth_testing(square: &[Bernstein<Interval>]) -> bool {
+/// A dense f64 matrix, by rows.
+type Matrix = Vec<Vec<f64>>;
+
+/// `C`, the inverse of the midpoint of the interval Jacobian of the polynomials on their box,
+/// and the interval matrix `I − C J`; `None` if the midpoint is singular.
+fn preconditioned(square: &[Bernstein<Interval>]) -> Option<(Matrix, Vec<Vec<Interval>>)> {
     let n = square.len();
     let jac: Vec<Vec<Interval>> = square
         .iter()
@@ -178,19 +166,37 @@ fn worth_testing(square: &[Bernstein<Interval>]) -> bool {
         .iter()
         .map(|r| r.iter().map(|x| 0.5 * (x.lo() + x.hi())).collect())
         .collect();
-    let Some(c) = inverse(&mid) else {
-        return false;
-    };
-    c.iter().enumerate().all(|(i, ci)| {
-        let mut sum = 0.0;
-        for j in 0..n {
-            let mut m = Interval::point(if i == j { 1.0 } else { 0.0 });
-            for (cil, jl) in ci.iter().zip(&jac) {
-                m = m.sub(&Interval::point(*cil).mul(&jl[j]));
-            }
-            sum += m.lo().abs().max(m.hi().abs());
-        }
-        sum < 1.0
+    let c = inverse(&mid)?;
+    let m = c
+        .iter()
+        .enumerate()
+        .map(|(i, ci)| {
+            (0..n)
+                .map(|j| {
+                    let mut m = Interval::point(if i == j { 1.0 } else { 0.0 });
+                    for (cil, jl) in ci.iter().zip(&jac) {
+                        m = m.sub(&Interval::point(*cil).mul(&jl[j]));
+                    }
+                    m
+                })
+                .collect()
+        })
+        .collect();
+    Some((c, m))
+}
+
+/// A cheap necessary condition for Krawczyk's test to succeed on the grown box, from the
+/// polynomials already on the box: every row of `|I − C J|` on the box sums to less than 1.
+/// It only decides whether to run the (costly) test; a box that fails it is subdivided, never
+/// decided by it.
+fn worth_testing(square: &[Bernstein<Interval>]) -> bool {
+    preconditioned(square).is_some_and(|(_, m)| {
+        m.iter().all(|row| {
+            row.iter()
+                .map(|x| x.lo().abs().max(x.hi().abs()))
+                .sum::<f64>()
+                < 1.0
+        })
     })
 }
 

@@ -103,6 +103,12 @@ pub(super) fn bounds_on(im: &ImagePolys, domain: &DyadicBoxN) -> ImageBounds {
 
 /// The sign of a polynomial on a box, if strict: `Some(true)` positive.
 pub(super) fn strict_sign(p: &Poly, domain: &DyadicBoxN) -> Option<bool> {
+    sign_on(&p.convert(Precision::F64), domain)
+}
+
+/// The strict sign of an interval polynomial on a dyadic box (its Bernstein coefficients
+/// there), if all coefficients share one.
+fn sign_on(p: &Bernstein<Interval>, domain: &DyadicBoxN) -> Option<bool> {
     let lo: Vec<Interval> = domain
         .iter()
         .map(|d| Interval::point(d.0.to_f64_bounds().0))
@@ -111,7 +117,7 @@ pub(super) fn strict_sign(p: &Poly, domain: &DyadicBoxN) -> Option<bool> {
         .iter()
         .map(|d| Interval::point(d.1.to_f64_bounds().1))
         .collect();
-    let r = p.convert::<Interval>(Precision::F64).restrict_box(&lo, &hi);
+    let r = p.restrict_box(&lo, &hi);
     let c = r.coeffs();
     if c.iter().all(|x| x.lo() > 0.0) {
         Some(true)
@@ -524,17 +530,7 @@ pub(super) fn narrow_to_curve(g: &Poly, domain: &DyadicBoxN, axis: usize) -> Dya
     while let Some((lo, hi, depth)) = stack.pop() {
         let mut d = domain.clone();
         d[m] = (lo, hi);
-        let l: Vec<Interval> = d
-            .iter()
-            .map(|x| Interval::point(x.0.to_f64_bounds().0))
-            .collect();
-        let h: Vec<Interval> = d
-            .iter()
-            .map(|x| Interval::point(x.1.to_f64_bounds().1))
-            .collect();
-        let c = gi.restrict_box(&l, &h);
-        let c = c.coeffs();
-        if c.iter().all(|x| x.lo() > 0.0) || c.iter().all(|x| x.hi() < 0.0) {
+        if sign_on(&gi, &d).is_some() {
             continue;
         }
         match lo.midpoint(hi) {
