@@ -251,3 +251,53 @@ fn two_spheres_in_perspective() {
     // The upper sphere hides part of the lower one.
     assert!(h.pieces.iter().any(|p| p.patch >= 8 && p.qi == Some(2)));
 }
+
+/// Random directions (a seeded generator; the seed is printed): a sphere in front of a torus,
+/// every certified piece against the analytic ray count. `LIMN_HLR_DIRECTIONS=N` sweeps N
+/// directions (default 3), `LIMN_SEED=S` replays a run.
+#[test]
+fn random_directions_sweep() {
+    let n: usize = std::env::var("LIMN_HLR_DIRECTIONS")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(3);
+    let seed: u64 = std::env::var("LIMN_SEED")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(0x5eed_0001);
+    println!("random_directions_sweep: LIMN_SEED={seed} LIMN_HLR_DIRECTIONS={n}");
+    let mut state = seed;
+    let mut next = || {
+        // SplitMix64.
+        state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        ((z ^ (z >> 31)) % 19) as i64 - 9
+    };
+    let shapes_ = [
+        Shape::Torus([0.0; 3], 2.0, 1.0),
+        Shape::Sphere([0.0, 0.0, 3.0], 1.0),
+    ];
+    let mut total = 0;
+    let mut done = 0;
+    while done < n {
+        let dir = [next(), next(), next()];
+        if dir == [0, 0, 0] {
+            continue;
+        }
+        done += 1;
+        let mut patches = shapes::torus(&q(2), &q(1));
+        patches.extend(shifted(shapes::sphere(&q(1)), [0, 0, 3]));
+        let h = run(patches, dir);
+        let (checked, pieces, certified) = check(
+            &h,
+            &shapes_,
+            dir.map(|x| x as f64),
+            &format!("seed {seed}, {dir:?}"),
+        );
+        println!("{dir:?}: {pieces} pieces, {certified} certified, {checked} points checked");
+        total += checked;
+    }
+    assert!(total > 100 * n, "{total}");
+}
