@@ -126,3 +126,26 @@ fn bad_arguments_exit_2_with_one_line() {
         assert!(err.contains(needle), "{args:?}: {err}");
     }
 }
+
+#[test]
+fn a_time_limit_leaves_the_rest_unresolved() {
+    let model = two_squares();
+    let (code, out, err) = limn(&[
+        "hlr",
+        model.to_str().unwrap(),
+        "--dir",
+        "1,2,-6",
+        "--format",
+        "json",
+        "--time-limit",
+        "0.000001",
+    ]);
+    assert_eq!(code, Some(0), "{err}");
+    let r: Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(r["certified"], false);
+    let unresolved = r["unresolved"].as_array().unwrap();
+    assert!(!unresolved.is_empty());
+    assert!(unresolved
+        .iter()
+        .all(|u| u["reason"].as_str().unwrap().contains("time limit")));
+}

@@ -45,6 +45,8 @@ use super::ray::{fix_axis, layers_in_front, RayOptions, Sample, Scene};
 use super::silhouette::{silhouette, DrawPatch, View};
 use crate::model::{Model, WeldTolerance};
 use crate::number::{Precision, Rational};
+use crate::solver::curve2::TIME_LIMIT_REASON;
+use crate::solver::dyadic::Dyadic;
 use crate::solver::precision::Ladder;
 use crate::solver::system::{solve_system_excluding, DyadicBoxN, SystemOptions, SystemRoots};
 use crate::solver::univariate::{isolate_roots_in, refine_root, Root};
@@ -246,11 +248,31 @@ pub fn hidden_lines(
         }
     }
     // The fold boxes of each silhouette arc, once.
-    let covers: Vec<Vec<(DyadicBoxN, DyadicBoxN)>> =
-        segments.par_iter().map(|s| fold_cover(&scene, s)).collect();
-    let results: Vec<(Job, SystemRoots, Vec<DyadicBoxN>)> = jobs
+    let covers: Vec<Vec<(DyadicBoxN, DyadicBoxN)>> = segments
+        .par_iter()
+        .map(|s| {
+            if opts.curve.past_deadline() {
+                Vec::new()
+            } else {
+                fold_cover(&scene, s)
+            }
+        })
+        .collect();
+    let results: Vec<(Job, SystemRoots, Vec<DyadicBoxN>, bool)> = jobs
         .par_iter()
         .map(|job| {
+            if opts.curve.past_deadline() {
+                // Not solved: every stretch the system covers is unresolved.
+                let domain: Vec<[f64; 2]> = job_domain(&segments, *job)
+                    .iter()
+                    .map(|d| [d.0.to_f64(), d.1.to_f64()])
+                    .collect();
+                let r = SystemRoots {
+                    unresolved: vec![domain],
+                    ..SystemRoots::default()
+                };
+                return (*job, r, Vec::new(), true);
+            }
             let (eqs, domain, exclude) = match *job {
                 Job::Pair(a, b) => {
                     let (eqs, domain) = crossing_system(&segments[a], &segments[b]);
@@ -278,10 +300,10 @@ pub fn hidden_lines(
                 }
             };
             let r = solve_system_excluding(&eqs, &[], &domain, &exclude, &opts.crossing);
-            (*job, r, exclude)
+            (*job, r, exclude, false)
         })
         .collect();
-    for (job, r, exclude) in &results {
+    for (job, r, exclude, timed_out) in &results {
         stats.boxes += r.boxes;
         stats.excluded_vertices += exclude.len();
         // Which variables are each segment's parameter, and what an unresolved box means.
@@ -310,6 +332,11 @@ pub fn hidden_lines(
                 events[s].push(Event::cut(root.enclosure[k]));
             }
         }
+        let why = if *timed_out {
+            TIME_LIMIT_REASON.to_string()
+        } else {
+            why
+        };
         for bx in &r.unresolved {
             for &(s, k) in &targets {
                 events[s].push(Event::unresolved(bx[k], why.clone()));
@@ -362,6 +389,31 @@ enum Job {
     SelfCrossing(usize),
     /// A segment passing through a patch.
     Penetration(usize, usize),
+}
+
+/// The variables' box of a job's system.
+fn job_domain(segments: &[Segment], job: Job) -> DyadicBoxN {
+    let unit = (Dyadic::ZERO, Dyadic::ONE);
+    match job {
+        Job::Pair(a, b) => segments[a]
+            .domain
+            .iter()
+            .chain(&segments[b].domain)
+            .copied()
+            .collect(),
+        Job::SelfCrossing(a) => segments[a]
+            .domain
+            .iter()
+            .chain(&segments[a].domain)
+            .copied()
+            .collect(),
+        Job::Penetration(a, _) => segments[a]
+            .domain
+            .iter()
+            .copied()
+            .chain([unit, unit])
+            .collect(),
+    }
 }
 
 /// A cut or an unresolved stretch on a segment's parameter.
@@ -490,6 +542,9 @@ fn qi_of(
     samples: &mut usize,
     refused: &mut usize,
 ) -> Result<usize, String> {
+    if opts.curve.past_deadline() {
+        return Err(TIME_LIMIT_REASON.to_string());
+    }
     let w = p1 - p0;
     let mut last = String::from("no sample point found in the piece");
     for (a, b) in [(0.25, 0.75), (0.1, 0.3), (0.7, 0.9)] {
