@@ -149,3 +149,47 @@ fn a_time_limit_leaves_the_rest_unresolved() {
         .iter()
         .all(|u| u["reason"].as_str().unwrap().contains("time limit")));
 }
+
+/// Every patch fixture from two directions under a time limit: no panic, a well-formed report,
+/// every unresolved piece explained.
+#[test]
+fn fixtures_under_a_time_limit() {
+    for model in [
+        "fixtures/bezier/teapot.bpt",
+        "fixtures/bezier/newell_teaset/teacup",
+        "fixtures/bezier/newell_teaset/teaspoon",
+        "fixtures/iges/occt/bug22869_Spring.igs",
+        "fixtures/iges/occt/occ22470.igs",
+    ] {
+        for dir in ["2,3,-2", "-1,1,1"] {
+            let (code, out, err) = limn(&[
+                "hlr",
+                model,
+                "--dir",
+                dir,
+                "--format",
+                "json",
+                "--time-limit",
+                "2",
+            ]);
+            assert_eq!(code, Some(0), "{model} {dir}: {err}");
+            let r: Value = serde_json::from_str(&out).unwrap();
+            let pieces = r["pieces"].as_array().unwrap();
+            let unresolved = r["unresolved"].as_array().unwrap();
+            assert_eq!(
+                unresolved.len(),
+                pieces.iter().filter(|p| p["certified"] == false).count(),
+                "{model} {dir}"
+            );
+            assert!(unresolved
+                .iter()
+                .all(|u| !u["reason"].as_str().unwrap().is_empty()));
+            println!(
+                "{model} from {dir}: {} pieces, {} unresolved, {:.0} ms",
+                pieces.len(),
+                unresolved.len(),
+                r["time_ms"].as_f64().unwrap()
+            );
+        }
+    }
+}
