@@ -301,3 +301,50 @@ fn random_directions_sweep() {
     }
     assert!(total > 100 * n, "{total}");
 }
+
+/// A regression found in review: a silhouette line inside a patch (where the silhouette
+/// function vanishes identically, here the fold of the parabolic cylinder z = x² seen along
+/// x) is not a line of the drawing, so no piece whose image can cross it may be certified.
+/// The square behind it is checked against the analytic count: a point (10, y, z) of it is
+/// behind two sheets (x = ±√z) when z > 0 and behind none when z < 0.
+#[test]
+fn a_silhouette_line_inside_a_patch_is_never_crossed_silently() {
+    let p = |x: i64, y: i64, z: i64| [q(x), q(y), q(z)];
+    let cylinder = RationalPatch::polynomial(
+        [2, 1],
+        vec![
+            p(-1, -1, 1),
+            p(-1, 0, 1),
+            p(1, 1, -3),
+            p(1, 2, -3),
+            p(3, 3, 9),
+            p(3, 4, 9),
+        ],
+    )
+    .unwrap();
+    let r = |n: i64, d: i64| Rational::from((n, d));
+    let pt = |y: Rational, z: Rational| [q(10), y, z];
+    let square = RationalPatch::polynomial(
+        [1, 1],
+        vec![
+            pt(r(1, 2), q(-1)),
+            pt(r(1, 2), r(1, 5)),
+            pt(r(7, 10), q(-1)),
+            pt(r(7, 10), r(1, 5)),
+        ],
+    )
+    .unwrap();
+    let h = run(vec![cylinder, square], [1, 0, 0]);
+    assert!(!h.is_certified());
+    let mut checked = 0;
+    for piece in h.pieces.iter().filter(|x| x.patch == 1 && x.certified) {
+        for pt in &piece.points {
+            let z = pt[2];
+            if z.abs() > 1e-6 && z < 0.2 - 1e-6 {
+                assert_eq!(piece.qi, Some(if z > 0.0 { 2 } else { 0 }), "{piece:?}");
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked > 0);
+}

@@ -156,7 +156,7 @@ pub struct HiddenLines {
 }
 
 /// The assumption of every drawing of a model with adjacent patches.
-pub const ADJACENT_ASSUMPTION: &str = "patches that share a corner or an edge do not cross each other away from their common points (penetrations are searched between non-adjacent patches only)";
+pub const ADJACENT_ASSUMPTION: &str = "no patch intersects itself, and patches that share a corner or an edge do not cross each other away from their common points (penetrations are searched between patches that share no corner only)";
 
 impl HiddenLines {
     /// Whether every piece's visibility is proven and every silhouette region resolved.
@@ -209,6 +209,38 @@ pub fn hidden_lines(
     // Pairs of segments (with the boxes around shared vertices proven to hold no other
     // crossing), self-crossings of sides, and segment-patch penetrations.
     let mut events: Vec<Vec<Event>> = vec![Vec::new(); segments.len()];
+    // Parts of the silhouette that are not segments: lines inside a patch where the silhouette
+    // function vanishes identically, and regions the curve solver left unresolved. Their
+    // crossings with the other lines are not searched, so every segment whose image can meet
+    // theirs is unresolved along its whole length.
+    let mut blockers: Vec<(usize, DyadicBoxN, String)> = Vec::new();
+    for (i, solved) in sil.solved.iter().enumerate() {
+        for line in &solved.lines {
+            let mut b = vec![(Dyadic::ZERO, Dyadic::ONE); 2];
+            b[line.axis] = (line.at, line.at);
+            blockers.push((
+                i,
+                b,
+                format!("its image may cross the silhouette line {line} of patch {i}, which is not drawn (a line where the silhouette function vanishes)"),
+            ));
+        }
+    }
+    for (i, cell, _) in &sil.unresolved {
+        let b = vec![(cell.lo[0], cell.hi[0]), (cell.lo[1], cell.hi[1])];
+        blockers.push((
+            *i,
+            b,
+            format!("its image may cross the silhouette of patch {i} where the curve solver left it unresolved"),
+        ));
+    }
+    for (p, b, why) in &blockers {
+        let bounds = bounds_on(&scene.images[*p], b);
+        for (k, sg) in segments.iter().enumerate() {
+            if sg.bounds.meets_image(&bounds) {
+                events[k].push(Event::unresolved(sg.range, why.clone()));
+            }
+        }
+    }
     let mut jobs: Vec<Job> = Vec::new();
     for (a, sa) in segments.iter().enumerate() {
         // Every vertex inside a segment cuts it (a junction on a side).
@@ -366,12 +398,12 @@ pub fn hidden_lines(
         .par_iter()
         .map(|p| facing(&p.surface, view))
         .collect();
-    let assumptions =
-        if scene.adjacency.edges.iter().any(|e| e.len() > 1) || model.patches.len() > 1 {
-            vec![ADJACENT_ASSUMPTION.to_string()]
-        } else {
-            Vec::new()
-        };
+    let mut assumptions = vec![ADJACENT_ASSUMPTION.to_string()];
+    if let WeldTolerance::Absolute(d) = weld {
+        assumptions.push(format!(
+            "patch sides matched within {d} (--weld) are the same edge: their points are taken as one point of space"
+        ));
+    }
     Ok(HiddenLines {
         pieces,
         facing,

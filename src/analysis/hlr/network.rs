@@ -60,9 +60,8 @@ pub(super) enum Key {
     Side { class: usize, t: [f64; 2] },
     /// A crossing of a patch's silhouette inside the patch.
     Inner { patch: usize, id: CrossingId },
-    /// A point where an arc was cut to make its pieces' images monotone: the line and the
-    /// parameter (its f64 bits).
-    Param { chain: usize, at: u64 },
+    /// A point where an arc was cut to make its pieces' images monotone (a unique id).
+    Param { id: usize },
 }
 
 /// A vertex of a segment.
@@ -83,7 +82,7 @@ impl Key {
                 a == b && s[0] <= u[1] && u[0] <= s[1]
             }
             (Key::Inner { patch: a, id: x }, Key::Inner { patch: b, id: y }) => a == b && x == y,
-            (Key::Param { chain: a, at: x }, Key::Param { chain: b, at: y }) => a == b && x == y,
+            (Key::Param { id: a }, Key::Param { id: b }) => a == b,
             _ => false,
         }
     }
@@ -357,6 +356,7 @@ pub(super) fn silhouette_segments(
 ) -> Vec<Segment> {
     let mut out = Vec::new();
     let mut chain = boundary.len();
+    let mut next_id = 0;
     for (i, solved) in sil.solved.iter().enumerate() {
         let topo = &solved.topology;
         for branch in &topo.branches {
@@ -374,12 +374,17 @@ pub(super) fn silhouette_segments(
                     .iter()
                     .find(|x| (x.from == *a && x.to == *b) || (x.from == *b && x.to == *a))
                 else {
+                    order += 1; // not consecutive across the gap
                     continue;
                 };
                 let axis = match arc.reason {
                     "graph over u" => 0,
                     "graph over v" => 1,
-                    _ => continue, // along a side: drawn as the boundary
+                    _ => {
+                        // Along a side: drawn as the boundary.
+                        order += 1;
+                        continue;
+                    }
                 };
                 let (pa, pb) = (topo.locations[a], topo.locations[b]);
                 let range = [pa[0][axis].min(pb[0][axis]), pa[1][axis].max(pb[1][axis])];
@@ -397,11 +402,11 @@ pub(super) fn silhouette_segments(
                     .iter()
                     .map(|id| crossing_vertex(scene, boundary, topo, i, id, axis))
                     .collect();
+                // Every junction cuts the side, even one whose interval overlaps another's.
                 for v in &vertices {
                     if let Key::Side { class, t } = &v.key {
-                        let side = &mut boundary[*class];
-                        if !side.vertices.iter().any(|x| x.key.matches(&v.key)) {
-                            side.vertices.push(Vertex {
+                        if !boundary[*class].vertices.iter().any(|x| x.key == v.key) {
+                            boundary[*class].vertices.push(Vertex {
                                 key: v.key.clone(),
                                 param: *t,
                                 uv: v.uv.clone(),
@@ -428,7 +433,7 @@ pub(super) fn silhouette_segments(
                 };
                 // Along the branch, vertex a comes first.
                 let forward = whole.vertices[0].param[0] <= whole.range[0];
-                let mut pieces = split_monotone(whole, 6);
+                let mut pieces = split_monotone(whole, 6, &mut next_id);
                 if !forward {
                     pieces.reverse();
                 }
@@ -447,7 +452,7 @@ pub(super) fn silhouette_segments(
 /// An arc cut at dyadic parameters (bisection, up to `depth` times) into pieces whose images
 /// are monotone; the cut points become shared vertices. Pieces never made monotone stay (their
 /// self-crossings are reported unresolved).
-pub(super) fn split_monotone(s: Segment, depth: u32) -> Vec<Segment> {
+pub(super) fn split_monotone(s: Segment, depth: u32, next_id: &mut usize) -> Vec<Segment> {
     if s.monotone.is_some() || depth == 0 {
         return vec![s];
     }
@@ -483,10 +488,7 @@ pub(super) fn split_monotone(s: Segment, depth: u32) -> Vec<Segment> {
     lo_uv[m] = r.lo().to_rational();
     hi_uv[m] = r.hi().to_rational();
     let cut = Vertex {
-        key: Key::Param {
-            chain: s.chain,
-            at: c.to_bits(),
-        },
+        key: Key::Param { id: *next_id },
         param: [c, c],
         uv: vec![(s.patch, lo_uv, hi_uv)],
     };
@@ -512,10 +514,11 @@ pub(super) fn split_monotone(s: Segment, depth: u32) -> Vec<Segment> {
             .collect();
         d
     };
+    *next_id += 1;
     let low = half([s.range[0], c], (lo, mid), true);
     let high = half([c, s.range[1]], (mid, hi), false);
-    let mut out = split_monotone(low, depth - 1);
-    out.extend(split_monotone(high, depth - 1));
+    let mut out = split_monotone(low, depth - 1, next_id);
+    out.extend(split_monotone(high, depth - 1, next_id));
     out
 }
 
