@@ -316,7 +316,14 @@ pub fn layers_in_front(scene: &Scene, sample: &Sample, opts: &RayOptions) -> Res
                     }
                 }
                 for c in carriers {
-                    exclude.push(injective_box(scene, j, &c).ok_or_else(|| {
+                    let bx = injective_box(scene, j, &c).or_else(|| {
+                        // A fold point (the Jacobian's determinant is exactly zero there): the
+                        // fold lemma's box, whose fold points are alone in their fibres.
+                        is_fold_point(scene, j, &c)
+                            .then(|| fold_box_around(scene, j, &c, &c))
+                            .flatten()
+                    });
+                    exclude.push(bx.ok_or_else(|| {
                         format!("the point's own sheet on patch {j} is not excluded (the image map is not provably injective near it)")
                     })?);
                 }
@@ -336,6 +343,14 @@ pub fn layers_in_front(scene: &Scene, sample: &Sample, opts: &RayOptions) -> Res
         count += hits_in_front(scene, &ps, j, &exclude, opts)?;
     }
     Ok(count)
+}
+
+/// Whether the image map of patch `j` is singular at exact parameters (its Jacobian's
+/// numerator determinant is exactly zero: a point of the silhouette, a fold point).
+fn is_fold_point(scene: &Scene, j: usize, uv: &[Rational; 2]) -> bool {
+    let m = &scene.jacobians[j];
+    let e = |p: &Poly| p.eval(uv);
+    Rational::from(&e(&m[0][0]) * &e(&m[1][1])) == Rational::from(&e(&m[0][1]) * &e(&m[1][0]))
 }
 
 /// The sides of the square through a parameter point, with the side parameter.

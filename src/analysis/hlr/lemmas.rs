@@ -203,6 +203,31 @@ pub(super) fn arc_fold_exclusion(
 /// along its parameter where one box does not do, each with a box of its patch around it on
 /// which the fold lemma holds.
 pub(super) fn fold_cover(scene: &Scene, arc: &Segment) -> Vec<(DyadicBoxN, DyadicBoxN)> {
+    if arc.kind != LineKind::Silhouette {
+        return Vec::new();
+    }
+    // A silhouette line inside its patch: pieces of its parameter, each a thin box of the patch.
+    if let Some((axis, at)) = arc.line {
+        let mut out = Vec::new();
+        let mut stack = vec![(arc.domain[0], 0u32)];
+        while let Some(((l, h), depth)) = stack.pop() {
+            let mut lo = [at.to_rational(), at.to_rational()];
+            let mut hi = lo.clone();
+            lo[1 - axis] = l.to_rational();
+            hi[1 - axis] = h.to_rational();
+            if let Some(bx) = fold_box_around(scene, arc.patch, &lo, &hi) {
+                out.push((vec![(l, h)], bx));
+                continue;
+            }
+            if depth < 5 {
+                if let Some(mid) = l.midpoint(h) {
+                    stack.push(((l, mid), depth + 1));
+                    stack.push(((mid, h), depth + 1));
+                }
+            }
+        }
+        return out;
+    }
     let Some(g) = &arc.constraint else {
         return Vec::new();
     };

@@ -203,28 +203,19 @@ pub fn hidden_lines(
     };
     let mut segments = boundary_segments(&scene);
     let arcs = silhouette_segments(&scene, &sil, &mut segments);
+    let first_chain = segments.len() + arcs.iter().map(|a| a.chain).max().unwrap_or(0) + 1;
+    let lines = zero_line_segments(&scene, &sil, &mut segments, &arcs, first_chain);
     segments.extend(arcs);
+    segments.extend(lines);
     stats.segments = segments.len();
 
     // Pairs of segments (with the boxes around shared vertices proven to hold no other
     // crossing), self-crossings of sides, and segment-patch penetrations.
     let mut events: Vec<Vec<Event>> = vec![Vec::new(); segments.len()];
-    // Parts of the silhouette that are not segments: lines inside a patch where the silhouette
-    // function vanishes identically, and regions the curve solver left unresolved. Their
+    // The silhouette regions the curve solver left unresolved are not segments: their
     // crossings with the other lines are not searched, so every segment whose image can meet
     // theirs is unresolved along its whole length.
     let mut blockers: Vec<(usize, DyadicBoxN, String)> = Vec::new();
-    for (i, solved) in sil.solved.iter().enumerate() {
-        for line in &solved.lines {
-            let mut b = vec![(Dyadic::ZERO, Dyadic::ONE); 2];
-            b[line.axis] = (line.at, line.at);
-            blockers.push((
-                i,
-                b,
-                format!("its image may cross the silhouette line {line} of patch {i}, which is not drawn (a line where the silhouette function vanishes)"),
-            ));
-        }
-    }
     for (i, cell, _) in &sil.unresolved {
         let b = vec![(cell.lo[0], cell.hi[0]), (cell.lo[1], cell.hi[1])];
         blockers.push((
@@ -600,6 +591,11 @@ fn qi_of(
 
 /// The sample point of a segment at parameter `c`.
 fn sample_at(s: &Segment, c: &Rational) -> Option<Sample> {
+    if let Some((axis, at)) = s.line {
+        let mut uv = [at.to_rational(), at.to_rational()];
+        uv[1 - axis] = c.clone();
+        return Some(Sample::Exact { patch: s.patch, uv });
+    }
     match (&s.constraint, s.edge) {
         (None, Some(edge)) => Some(Sample::Exact {
             patch: s.patch,
@@ -663,7 +659,13 @@ fn draw_points(s: &Segment, draw: &DrawPatch, p0: f64, p1: f64, steps: usize) ->
                     uv.push(p);
                 }
             }
-            (None, None) => {}
+            (None, None) => {
+                if let Some((axis, at)) = s.line {
+                    let mut p = [at.to_f64(); 2];
+                    p[1 - axis] = t;
+                    uv.push(p);
+                }
+            }
         }
     }
     let points = uv.iter().map(|p| draw.eval(p[0], p[1])).collect();

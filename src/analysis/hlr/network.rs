@@ -49,6 +49,9 @@ pub(super) struct Segment {
     /// The patches it lies on: `(patch, side, reversed)` for the users of an edge (reversed:
     /// the side runs opposite to the segment's parameter), `(patch, None, false)` for an arc.
     pub(super) on: Vec<(usize, Option<Edge>, bool)>,
+    /// For a silhouette line inside its patch (where the silhouette function vanishes
+    /// identically): the fixed variable and its value; the segment's parameter is the other.
+    pub(super) line: Option<(usize, Dyadic)>,
 }
 
 /// Where a vertex of the line network is.
@@ -247,6 +250,7 @@ pub(super) fn boundary_segments(scene: &Scene) -> Vec<Segment> {
             axis: 0,
             vertices,
             on,
+            line: None,
         });
     }
     out
@@ -430,6 +434,7 @@ pub(super) fn silhouette_segments(
                     tangent,
                     vertices,
                     on: vec![(i, None, false)],
+                    line: None,
                 };
                 // Along the branch, vertex a comes first.
                 let forward = whole.vertices[0].param[0] <= whole.range[0];
@@ -557,6 +562,14 @@ pub(super) fn narrow_to_curve(g: &Poly, domain: &DyadicBoxN, axis: usize) -> Dya
 /// segment lies on `p` and meets `b`.
 pub(super) fn sub_domain(s: &Segment, p: usize, b: &DyadicBoxN) -> Option<DyadicBoxN> {
     let &(_, edge, rev) = s.on.iter().find(|x| x.0 == p)?;
+    if let Some((axis, at)) = s.line {
+        if !(b[axis].0 <= at && at <= b[axis].1) {
+            return None;
+        }
+        let (lo, hi) = b[1 - axis];
+        let (lo, hi) = (lo.max(s.domain[0].0), hi.min(s.domain[0].1));
+        return (lo < hi).then(|| vec![(lo, hi)]);
+    }
     match edge {
         None => {
             let d: DyadicBoxN = (0..2)
@@ -613,4 +626,125 @@ pub(super) fn dyadic_ceil(x: &Rational) -> Rational {
     y = Rational::from(y.ceil_ref());
     y >>= 40u32;
     y
+}
+
+/// The silhouette lines inside patches (where the silhouette function vanishes identically on
+/// an axis line `u = c` or `v = c`, found exactly by the curve solver): each is a segment like a
+/// side, a fold curve of its patch. Their ends on sides are junctions of those sides; the
+/// crossings of the patch's other silhouette arcs on them are their vertices.
+pub(super) fn zero_line_segments(
+    scene: &Scene,
+    sil: &crate::analysis::silhouette::Silhouette,
+    boundary: &mut [Segment],
+    arcs: &[Segment],
+    first_chain: usize,
+) -> Vec<Segment> {
+    let mut out = Vec::new();
+    let mut chain = first_chain;
+    for (i, solved) in sil.solved.iter().enumerate() {
+        for zl in &solved.lines {
+            let (axis, at) = (zl.axis, zl.at);
+            let atq = at.to_rational();
+            let f = |p: &Poly| fix_axis(p, axis, &atq);
+            let whole = &scene.images[i];
+            let im = ImagePolys {
+                x: f(&whole.x),
+                y: f(&whole.y),
+                q: f(&whole.q),
+                depth: f(&whole.depth),
+                w: f(&whole.w),
+            };
+            let tangent = tangent_polys_side(&im);
+            let domain = vec![(Dyadic::ZERO, Dyadic::ONE)];
+            let point = |t: f64| -> ([Rational; 2], [Rational; 2]) {
+                let mut uv = [atq.clone(), atq.clone()];
+                uv[1 - axis] = rat(t);
+                (uv.clone(), uv)
+            };
+            let mut vertices = Vec::new();
+            // Its ends, on the sides of the patch across the line.
+            for (t, edge) in [
+                (0.0, if axis == 0 { Edge::V0 } else { Edge::U0 }),
+                (1.0, if axis == 0 { Edge::V1 } else { Edge::U1 }),
+            ] {
+                let (lo, hi) = point(t);
+                let key = match class_of(scene, i, edge) {
+                    Some((class, rev)) => {
+                        let c = at.to_f64();
+                        Key::Side {
+                            class,
+                            t: if rev { [1.0 - c, 1.0 - c] } else { [c, c] },
+                        }
+                    }
+                    None => match scene
+                        .adjacency
+                        .collapsed
+                        .iter()
+                        .find(|(p, e, _)| *p == i && *e == edge)
+                    {
+                        Some(&(_, _, vid)) => Key::Corner(vid),
+                        None => continue,
+                    },
+                };
+                let uv = match &key {
+                    Key::Side { class, t } => side_uv(&boundary[*class].on, *t),
+                    _ => vec![(i, lo, hi)],
+                };
+                if let Key::Side { class, t } = &key {
+                    if !boundary[*class].vertices.iter().any(|x| x.key == key) {
+                        boundary[*class].vertices.push(Vertex {
+                            key: key.clone(),
+                            param: *t,
+                            uv: uv.clone(),
+                        });
+                    }
+                }
+                vertices.push(Vertex {
+                    key,
+                    param: [t, t],
+                    uv,
+                });
+            }
+            // The patch's silhouette arcs that end on it.
+            for a in arcs.iter().filter(|a| a.patch == i && a.line.is_none()) {
+                for v in &a.vertices {
+                    let Key::Inner { id, .. } = &v.key else {
+                        continue;
+                    };
+                    let on_line = match *id {
+                        CrossingId::Exact { u, v: vv } => [u, vv][axis] == at,
+                        CrossingId::Segment { fixed, c, .. } => fixed == axis && c == at,
+                    };
+                    if on_line && !vertices.iter().any(|x: &Vertex| x.key == v.key) {
+                        let (_, lo, hi) = &v.uv[0];
+                        vertices.push(Vertex {
+                            key: v.key.clone(),
+                            param: [lo[1 - axis].to_f64(), hi[1 - axis].to_f64()],
+                            uv: v.uv.clone(),
+                        });
+                    }
+                }
+            }
+            out.push(Segment {
+                kind: LineKind::Silhouette,
+                patch: i,
+                edge: None,
+                chain,
+                order: 0,
+                bounds: bounds_on(&im, &domain),
+                monotone: find_monotone(&tangent, &domain),
+                image: im,
+                constraint: None,
+                tangent,
+                range: [0.0, 1.0],
+                domain,
+                axis: 0,
+                vertices,
+                on: vec![(i, None, false)],
+                line: Some((axis, at)),
+            });
+            chain += 1;
+        }
+    }
+    out
 }
