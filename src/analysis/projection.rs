@@ -53,6 +53,19 @@ pub struct ImagePolys {
 }
 
 impl ImagePolys {
+    /// The image polynomials restricted to the line where variable `axis` equals `at`, in
+    /// the other variable.
+    pub fn on_line(&self, axis: usize, at: &Rational) -> ImagePolys {
+        let r = |p: &Poly| fix_axis(p, axis, at);
+        ImagePolys {
+            x: r(&self.x),
+            y: r(&self.y),
+            q: r(&self.q),
+            depth: r(&self.depth),
+            w: r(&self.w),
+        }
+    }
+
     /// The image polynomials restricted to one side of the square, in the side's increasing
     /// parameter (u for `V0`/`V1`, v for `U0`/`U1`).
     pub fn on_side(&self, edge: Edge) -> ImagePolys {
@@ -252,6 +265,19 @@ pub fn side_restriction(p: &Poly, edge: Edge) -> Poly {
         Edge::U0 => take(0, false),
         Edge::U1 => take(0, true),
     }
+}
+
+/// A univariate polynomial: `p` with variable `axis` fixed at `at`.
+pub fn fix_axis(p: &Poly, axis: usize, at: &Rational) -> Poly {
+    let r = p.restrict_rational(axis, at, at);
+    let [m, n] = [r.degrees()[0], r.degrees()[1]];
+    let coeffs: Vec<Rational> = if axis == 0 {
+        (0..=n).map(|j| r.coeff(&[0, j]).clone()).collect()
+    } else {
+        (0..=m).map(|i| r.coeff(&[i, 0]).clone()).collect()
+    };
+    let deg = if axis == 0 { n } else { m };
+    Bernstein::new(&[deg], coeffs).expect("a line of a patch")
 }
 
 /// A polynomial in `k` variables as one in `total` variables, its variables placed from

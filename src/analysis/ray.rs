@@ -23,6 +23,7 @@
 //! The rest of the domain is solved with those boxes excluded
 //! ([`crate::solver::system::solve_system_excluding`]).
 
+pub use super::projection::fix_axis;
 use super::projection::{lift, side_point, ImagePolys, Projection, ProjectionError};
 use super::silhouette::View;
 use crate::bernstein::Bernstein;
@@ -193,19 +194,6 @@ impl Default for RayOptions {
     }
 }
 
-/// A univariate polynomial: `p` with variable `axis` fixed at `at`.
-pub fn fix_axis(p: &Poly, axis: usize, at: &Rational) -> Poly {
-    let r = p.restrict_rational(axis, at, at);
-    let [m, n] = [r.degrees()[0], r.degrees()[1]];
-    let coeffs: Vec<Rational> = if axis == 0 {
-        (0..=n).map(|j| r.coeff(&[0, j]).clone()).collect()
-    } else {
-        (0..=m).map(|i| r.coeff(&[i, 0]).clone()).collect()
-    };
-    let deg = if axis == 0 { n } else { m };
-    Bernstein::new(&[deg], coeffs).expect("a line of a patch")
-}
-
 /// The point's image polynomials in its own free variables (none for an exact point: then
 /// constants), the box of those variables, and its constraints.
 struct PointSystem {
@@ -256,19 +244,12 @@ impl Sample {
                 g,
                 ..
             } => {
-                let f = |p: &Poly| fix_axis(p, *axis, at);
-                let whole = ImagePolys {
-                    x: f(&im.x),
-                    y: f(&im.y),
-                    q: f(&im.q),
-                    depth: f(&im.depth),
-                    w: f(&im.w),
-                };
+                let whole = im.on_line(*axis, at);
                 Some(PointSystem {
                     nvars: 1,
                     image: whole,
                     domain: vec![(dy(&interval[0])?, dy(&interval[1])?)],
-                    constraints: vec![f(g)],
+                    constraints: vec![fix_axis(g, *axis, at)],
                 })
             }
         }

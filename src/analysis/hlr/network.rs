@@ -214,8 +214,6 @@ pub(super) fn boundary_segments(scene: &Scene) -> Vec<Segment> {
     for (chain, users) in scene.adjacency.edges.iter().enumerate() {
         let first = users[0];
         let im = scene.images[first.patch].on_side(first.edge);
-        let tangent = tangent_polys_side(&im);
-        let domain = vec![(Dyadic::ZERO, Dyadic::ONE)];
         let on: Vec<(usize, Option<Edge>, bool)> = users
             .iter()
             .map(|u| (u.patch, Some(u.edge), u.reversed != first.reversed))
@@ -234,24 +232,16 @@ pub(super) fn boundary_segments(scene: &Scene) -> Vec<Segment> {
                 uv: side_uv(&on, [1.0, 1.0]),
             },
         ];
-        out.push(Segment {
-            kind: LineKind::Boundary,
-            patch: first.patch,
-            edge: Some(first.edge),
+        out.push(exact_curve(
+            LineKind::Boundary,
+            first.patch,
+            Some(first.edge),
             chain,
-            order: 0,
-            bounds: bounds_on(&im, &domain),
-            monotone: find_monotone(&tangent, &domain),
-            image: im,
-            constraint: None,
-            tangent,
-            range: [0.0, 1.0],
-            domain,
-            axis: 0,
+            im,
             vertices,
             on,
-            line: None,
-        });
+            None,
+        ));
     }
     out
 }
@@ -645,17 +635,7 @@ pub(super) fn zero_line_segments(
         for zl in &solved.lines {
             let (axis, at) = (zl.axis, zl.at);
             let atq = at.to_rational();
-            let f = |p: &Poly| fix_axis(p, axis, &atq);
-            let whole = &scene.images[i];
-            let im = ImagePolys {
-                x: f(&whole.x),
-                y: f(&whole.y),
-                q: f(&whole.q),
-                depth: f(&whole.depth),
-                w: f(&whole.w),
-            };
-            let tangent = tangent_polys_side(&im);
-            let domain = vec![(Dyadic::ZERO, Dyadic::ONE)];
+            let im = scene.images[i].on_line(axis, &atq);
             let point = |t: f64| -> ([Rational; 2], [Rational; 2]) {
                 let mut uv = [atq.clone(), atq.clone()];
                 uv[1 - axis] = rat(t);
@@ -725,26 +705,53 @@ pub(super) fn zero_line_segments(
                     }
                 }
             }
-            out.push(Segment {
-                kind: LineKind::Silhouette,
-                patch: i,
-                edge: None,
+            out.push(exact_curve(
+                LineKind::Silhouette,
+                i,
+                None,
                 chain,
-                order: 0,
-                bounds: bounds_on(&im, &domain),
-                monotone: find_monotone(&tangent, &domain),
-                image: im,
-                constraint: None,
-                tangent,
-                range: [0.0, 1.0],
-                domain,
-                axis: 0,
+                im,
                 vertices,
-                on: vec![(i, None, false)],
-                line: Some((axis, at)),
-            });
+                vec![(i, None, false)],
+                Some((axis, at)),
+            ));
             chain += 1;
         }
     }
     out
+}
+
+/// A segment that is a whole exact curve of one parameter in [0, 1] (a side, or a silhouette
+/// line inside a patch).
+#[allow(clippy::too_many_arguments)]
+fn exact_curve(
+    kind: LineKind,
+    patch: usize,
+    edge: Option<Edge>,
+    chain: usize,
+    image: ImagePolys,
+    vertices: Vec<Vertex>,
+    on: Vec<(usize, Option<Edge>, bool)>,
+    line: Option<(usize, Dyadic)>,
+) -> Segment {
+    let tangent = tangent_polys_side(&image);
+    let domain = vec![(Dyadic::ZERO, Dyadic::ONE)];
+    Segment {
+        kind,
+        patch,
+        edge,
+        chain,
+        order: 0,
+        bounds: bounds_on(&image, &domain),
+        monotone: find_monotone(&tangent, &domain),
+        image,
+        constraint: None,
+        tangent,
+        range: [0.0, 1.0],
+        domain,
+        axis: 0,
+        vertices,
+        on,
+        line,
+    }
 }
