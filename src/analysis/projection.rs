@@ -56,20 +56,17 @@ impl ImagePolys {
     /// The image polynomials restricted to the line where variable `axis` equals `at`, in
     /// the other variable.
     pub fn on_line(&self, axis: usize, at: &Rational) -> ImagePolys {
-        let r = |p: &Poly| fix_axis(p, axis, at);
-        ImagePolys {
-            x: r(&self.x),
-            y: r(&self.y),
-            q: r(&self.q),
-            depth: r(&self.depth),
-            w: r(&self.w),
-        }
+        self.map(|p| fix_axis(p, axis, at))
     }
 
     /// The image polynomials restricted to one side of the square, in the side's increasing
     /// parameter (u for `V0`/`V1`, v for `U0`/`U1`).
     pub fn on_side(&self, edge: Edge) -> ImagePolys {
-        let r = |p: &Poly| side_restriction(p, edge);
+        self.map(|p| side_restriction(p, edge))
+    }
+
+    /// The same map applied to every polynomial.
+    fn map(&self, r: impl Fn(&Poly) -> Poly) -> ImagePolys {
         ImagePolys {
             x: r(&self.x),
             y: r(&self.y),
