@@ -4,9 +4,10 @@
 use crate::analysis::baseline::{baseline_silhouette, BaselineMethod};
 use crate::analysis::hlr::{hidden_lines, HlrOptions, HlrReport};
 use crate::analysis::parabolic::parabolic;
-use crate::analysis::render::{hlr_svg, silhouette_obj, silhouette_svg};
+use crate::analysis::render::{hlr_svg, silhouette_obj, silhouette_svg, visible_svg};
 use crate::analysis::silhouette::{parse_vector, silhouette, Silhouette, SilhouetteReport, View};
 use crate::analysis::silhouette_certificate::{check_silhouette, SilhouetteCertificate};
+use crate::analysis::visible::{visible_regions, VisibleOptions, VisibleReport};
 use crate::io::{read_model, read_model_bytes};
 use crate::model::{default_weld, Format, ModelInfo, WeldTolerance};
 use crate::solver::CurveOptions;
@@ -101,6 +102,26 @@ enum Command {
         /// Output format.
         #[arg(long, value_enum, default_value_t = HlrFormat::Text)]
         format: HlrFormat,
+        #[command(flatten)]
+        run: RunArgs,
+    },
+    /// The visible regions of each patch for a view: the parameter cells proven visible,
+    /// hidden (with their QI) or unresolved, the loops around the proven-visible and the
+    /// possibly-visible cells, and bounds on each patch's visible share of its area.
+    Visible {
+        /// The model file.
+        model: PathBuf,
+        #[command(flatten)]
+        view: ViewArgs,
+        /// Output format (svg: the visible cells drawn in the view plane, unresolved in red).
+        #[arg(long, value_enum, default_value_t = HlrFormat::Text)]
+        format: HlrFormat,
+        /// The deepest cell level: cells of side 2^-depth in the parameter square, 1..=14.
+        #[arg(long, default_value_t = 8)]
+        cell_depth: u32,
+        /// Include every leaf cell with its QI in the JSON (the certificate of the result).
+        #[arg(long)]
+        cells: bool,
         #[command(flatten)]
         run: RunArgs,
     },
@@ -453,6 +474,72 @@ where
                         }
                     );
                     hlr_svg(&m, &view, &h, &title)
+                }
+            };
+            write_output(run.output, &text, out)
+        }
+        Command::Visible {
+            model,
+            view,
+            format,
+            cell_depth,
+            cells,
+            run,
+        } => {
+            check_run_arguments(&run)?;
+            let view = parse_view(view)?;
+            if run.tol.is_some() {
+                return Err(CliError::input(
+                    "--tol: not supported by visible (the cells are exact dyadic boxes; --cell-depth sets their size)",
+                ));
+            }
+            if !(1..=14).contains(&cell_depth) {
+                return Err(CliError::input(format!(
+                    "--cell-depth: expected 1..=14, found {cell_depth}"
+                )));
+            }
+            refuse_overwrite(run.output.iter(), run.force)?;
+            let Loaded {
+                name,
+                model: m,
+                weld,
+                opts,
+                pool,
+                ..
+            } = load(&model, &run)?;
+            let start = std::time::Instant::now();
+            let vopts = VisibleOptions {
+                curve: opts,
+                max_depth: cell_depth,
+                ..VisibleOptions::default()
+            };
+            let r = pool
+                .install(|| visible_regions(&m, &view, &vopts, weld))
+                .map_err(|e| CliError::input(format!("{name}: {e}")))?;
+            let ms = start.elapsed().as_secs_f64() * 1e3;
+            let report =
+                VisibleReport::new(&name, &view, &r, cells, ms, pool.current_num_threads());
+            let text = match format {
+                HlrFormat::Text => report.text(),
+                HlrFormat::Json => {
+                    serde_json::to_string_pretty(&report).map_err(|e| CliError {
+                        message: e.to_string(),
+                        code: 1,
+                    })? + "\n"
+                }
+                HlrFormat::Svg => {
+                    let title = format!(
+                        "{}: visible regions, area share [{:.4}, {:.4}]{}",
+                        name,
+                        r.area_fraction[0],
+                        r.area_fraction[1],
+                        if report.certified {
+                            ""
+                        } else {
+                            ", unresolved cells red"
+                        }
+                    );
+                    visible_svg(&m, &view, &r, &title)
                 }
             };
             write_output(run.output, &text, out)

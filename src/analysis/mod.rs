@@ -12,3 +12,4 @@ pub mod render;
 pub mod silhouette;
 pub mod silhouette_certificate;
 pub mod vec3;
+pub mod visible;

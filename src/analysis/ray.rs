@@ -561,10 +561,6 @@ pub fn fold_box_around(
     lo: &[Rational; 2],
     hi: &[Rational; 2],
 ) -> Option<DyadicBoxN> {
-    let im = &scene.images[j];
-    // The image direction along which the outline runs, approximately: the image of the
-    // kernel's complement, i.e. a nonzero row direction of the Jacobian at the point. The
-    // lemma is proven for whatever rotation is chosen; a good one only makes it succeed.
     let mid: Vec<Rational> = (0..2)
         .map(|a| {
             let mut m = Rational::from(&lo[a] + &hi[a]);
@@ -572,44 +568,60 @@ pub fn fold_box_around(
             m
         })
         .collect();
-    let jac = &scene.jacobians[j];
-    let g = |p: &Poly| p.eval(&mid).to_f64();
-    // Columns of the Jacobian: the images of ∂/∂u and ∂/∂v; at a fold they are parallel to
-    // the outline tangent (the image of the Jacobian is one-dimensional).
-    let cu = [g(&jac[0][0]), g(&jac[1][0])];
-    let cv = [g(&jac[0][1]), g(&jac[1][1])];
-    let t = if cu[0].hypot(cu[1]) >= cv[0].hypot(cv[1]) {
-        cu
-    } else {
-        cv
-    };
-    let norm = t[0].hypot(t[1]);
-    if norm.is_nan() || norm <= 0.0 {
-        return None;
-    }
-    let r = |x: f64| Rational::from_f64((x / norm * 1024.0).round() / 1024.0).unwrap_or_default();
-    let (tx, ty) = (r(t[0]), r(t[1]));
-    if tx == 0 && ty == 0 {
-        return None;
-    }
-    // κ along the outline, η across it.
-    let kappa = &im.x.scale(&tx) + &im.y.scale(&ty);
-    let eta = &im.y.scale(&tx) - &im.x.scale(&ty);
-    let polys = FoldPolys::new(&kappa, &eta, &im.q);
+    let polys = FoldPolys::at(scene, j, &mid)?;
     boxes_around(lo, hi).into_iter().find(|b| {
         let (blo, bhi) = f64_box(b);
-        fold_signs(&polys, &blo, &bhi, 3).is_some()
+        polys.holds(&blo, &bhi)
     })
 }
 
-/// κ, η, q and their first and second partial derivatives, in interval form.
-struct FoldPolys {
+/// κ, η, q and their first and second partial derivatives, in interval form: what the fold
+/// lemma is checked on (`proofs/ray-count.md`).
+pub(crate) struct FoldPolys {
     kappa: [Bernstein<Interval>; 6],
     eta: [Bernstein<Interval>; 6],
     q: [Bernstein<Interval>; 6],
 }
 
 impl FoldPolys {
+    /// The polynomials of patch `j`, with the image rotated so that κ runs along the
+    /// outline's direction at the parameter point `mid` (approximately: a nonzero column of
+    /// the Jacobian there, which at a fold is parallel to the outline tangent). The lemma is
+    /// proven for whatever rotation is chosen; a good one only makes it succeed. `None` if
+    /// the Jacobian vanishes there.
+    pub(crate) fn at(scene: &Scene, j: usize, mid: &[Rational]) -> Option<FoldPolys> {
+        let im = &scene.images[j];
+        let jac = &scene.jacobians[j];
+        let g = |p: &Poly| p.eval(mid).to_f64();
+        let cu = [g(&jac[0][0]), g(&jac[1][0])];
+        let cv = [g(&jac[0][1]), g(&jac[1][1])];
+        let t = if cu[0].hypot(cu[1]) >= cv[0].hypot(cv[1]) {
+            cu
+        } else {
+            cv
+        };
+        let norm = t[0].hypot(t[1]);
+        if norm.is_nan() || norm <= 0.0 {
+            return None;
+        }
+        let r =
+            |x: f64| Rational::from_f64((x / norm * 1024.0).round() / 1024.0).unwrap_or_default();
+        let (tx, ty) = (r(t[0]), r(t[1]));
+        if tx == 0 && ty == 0 {
+            return None;
+        }
+        // κ along the outline, η across it.
+        let kappa = &im.x.scale(&tx) + &im.y.scale(&ty);
+        let eta = &im.y.scale(&tx) - &im.x.scale(&ty);
+        Some(FoldPolys::new(&kappa, &eta, &im.q))
+    }
+
+    /// Whether the fold lemma holds on the box: then the fibre, within the box, of every
+    /// fold point in it is that point alone.
+    pub(crate) fn holds(&self, lo: &[f64], hi: &[f64]) -> bool {
+        fold_signs(self, lo, hi, 3).is_some()
+    }
+
     fn new(kappa: &Poly, eta: &Poly, q: &Poly) -> FoldPolys {
         let all = |p: &Poly| -> [Bernstein<Interval>; 6] {
             let (pu, pv) = (p.deriv(0), p.deriv(1));

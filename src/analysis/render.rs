@@ -3,6 +3,7 @@
 use super::hlr::{HiddenLines, HlrPiece, LineKind};
 use super::silhouette::{DrawPatch, Silhouette, View};
 use super::vec3::{cross, dot, normalize};
+use super::visible::VisibleRegions;
 use crate::model::Model;
 use std::fmt::Write;
 
@@ -108,15 +109,18 @@ pub fn silhouette_svg(model: &Model, view: &View, s: &Silhouette, title: &str) -
     let mut layers = vec![Layer {
         style: r##"stroke="#c8c8c8" stroke-width="0.6""##,
         paths: outlines,
+        filled: false,
     }];
     let (good, bad): (Vec<_>, Vec<_>) = curves.into_iter().partition(|c| c.0);
     layers.push(Layer {
         style: r##"stroke="#000" stroke-width="1.8""##,
         paths: good.into_iter().map(|c| c.1).collect(),
+        filled: false,
     });
     layers.push(Layer {
         style: r##"stroke="#d00" stroke-width="1.8" stroke-dasharray="6,3""##,
         paths: bad.into_iter().map(|c| c.1).collect(),
+        filled: false,
     });
     svg_document(title, &layers, &marks)
 }
@@ -127,6 +131,9 @@ pub struct Layer {
     pub style: &'static str,
     /// The polylines, in image coordinates (y up).
     pub paths: Vec<Vec<[f64; 2]>>,
+    /// Closed and filled: the polylines are joined into one even-odd path (so loops inside
+    /// loops are holes), and the style gives the fill.
+    pub filled: bool,
 }
 
 /// An 800x800 SVG document of layers of polylines (fitted to the page, y up) and red marks,
@@ -179,6 +186,15 @@ pub fn svg_document(title: &str, layers: &[Layer], marks: &[[f64; 2]]) -> String
         if layer.paths.is_empty() {
             continue;
         }
+        if layer.filled {
+            let d: String = layer.paths.iter().map(|o| path(o) + "Z ").collect();
+            let _ = writeln!(
+                svg,
+                r#"<path fill-rule="evenodd" {} d="{}"/>"#,
+                layer.style, d
+            );
+            continue;
+        }
         let _ = writeln!(svg, r#"<g fill="none" {}>"#, layer.style);
         for o in &layer.paths {
             let _ = writeln!(svg, r#"<path d="{}"/>"#, path(o));
@@ -214,18 +230,77 @@ pub fn hlr_svg(model: &Model, view: &View, h: &HiddenLines, title: &str) -> Stri
         Layer {
             style: r##"stroke="#9a9a9a" stroke-width="0.8" stroke-dasharray="4,3""##,
             paths: pick(&|p| p.qi.is_some_and(|q| q > 0)),
+            filled: false,
         },
         Layer {
             style: r##"stroke="#000" stroke-width="1.0""##,
             paths: pick(&|p| p.qi == Some(0) && p.kind == LineKind::Boundary),
+            filled: false,
         },
         Layer {
             style: r##"stroke="#000" stroke-width="1.8""##,
             paths: pick(&|p| p.qi == Some(0) && p.kind == LineKind::Silhouette),
+            filled: false,
         },
         Layer {
             style: r##"stroke="#d00" stroke-width="1.8""##,
             paths: pick(&|p| p.qi.is_none()),
+            filled: false,
+        },
+    ];
+    svg_document(title, &layers, &[])
+}
+
+/// Visible regions as an SVG document in the view plane: the proven-visible region of every
+/// patch filled grey with its loops in black, and the unresolved cells filled red. (The
+/// visible regions of different patches cannot overlap in the image.)
+pub fn visible_svg(model: &Model, view: &View, r: &VisibleRegions, title: &str) -> String {
+    let proj = Projection::new(view, model);
+    let loops: Vec<Vec<[f64; 2]>> = r
+        .patches
+        .iter()
+        .flat_map(|p| p.visible_loops.iter())
+        .map(|l| l.xyz.iter().map(|&x| proj.project(x)).collect())
+        .collect();
+    let mut red = Vec::new();
+    for p in &r.patches {
+        let d = DrawPatch::new(&model.patches[p.patch].surface);
+        for c in p.cells.iter().filter(|c| c.qi.is_none()) {
+            let corners = [
+                [c.lo[0], c.lo[1]],
+                [c.hi[0], c.lo[1]],
+                [c.hi[0], c.hi[1]],
+                [c.lo[0], c.hi[1]],
+            ];
+            red.push(
+                corners
+                    .iter()
+                    .map(|q| proj.project(d.eval(q[0], q[1])))
+                    .collect(),
+            );
+        }
+    }
+    let closed = |mut v: Vec<[f64; 2]>| {
+        if let Some(f) = v.first().copied() {
+            v.push(f);
+        }
+        v
+    };
+    let layers = [
+        Layer {
+            style: r##"fill="#c9d3de" stroke="none""##,
+            paths: loops.clone(),
+            filled: true,
+        },
+        Layer {
+            style: r##"fill="#e03030" stroke="none""##,
+            paths: red,
+            filled: true,
+        },
+        Layer {
+            style: r##"stroke="#000" stroke-width="0.6""##,
+            paths: loops.into_iter().map(closed).collect(),
+            filled: false,
         },
     ];
     svg_document(title, &layers, &[])
