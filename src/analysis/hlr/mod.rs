@@ -39,6 +39,7 @@ use network::*;
 use systems::*;
 
 use super::facing::{facing, Facing};
+use super::fold_edges::{continuing_stretches, edge_orientations};
 use super::model_curves::zero_across;
 use super::projection::side_point;
 use super::ray::{fix_axis, layers_in_front, RayOptions, Sample, Scene};
@@ -65,6 +66,11 @@ pub struct HlrOptions {
     pub crossing: SystemOptions,
     /// Points drawn per segment piece (at least 2).
     pub draw_steps: usize,
+    /// Clusters (paper 000, section 4): an edge across which the surface provably continues
+    /// in the image ([`super::fold_edges`]) cannot change the QI of what lies behind it, so
+    /// its crossings do not cut other lines, and two such edges are not solved against each
+    /// other. Off: every edge is treated as outline (for measuring what clusters save).
+    pub clusters: bool,
 }
 
 impl Default for HlrOptions {
@@ -78,6 +84,7 @@ impl Default for HlrOptions {
                 refine_width: 1e-12,
             },
             draw_steps: 8,
+            clusters: true,
         }
     }
 }
@@ -128,6 +135,11 @@ pub struct HlrStats {
     pub monotone_pairs: usize,
     /// Pairs culled by their image boxes.
     pub culled_pairs: usize,
+    /// Pairs skipped because both are edges inside a cluster (the surface continues across
+    /// both in the image: neither can change the other's QI).
+    pub cluster_pairs: usize,
+    /// Segments that are edges inside a cluster.
+    pub cluster_edges: usize,
     /// Segment-patch penetration systems solved.
     pub penetration_systems: usize,
     /// Boxes around shared vertices excluded by a lemma (proofs/hidden-lines.md).
@@ -208,6 +220,22 @@ pub fn hidden_lines(
     segments.extend(arcs);
     segments.extend(lines);
     stats.segments = segments.len();
+    // Where segments are not outline (cannot change the QI of what lies behind them).
+    let inner: Vec<Vec<[f64; 2]>> = segments
+        .par_iter()
+        .map(|s| {
+            if opts.clusters {
+                inside_cluster(&scene, s)
+            } else {
+                Vec::new()
+            }
+        })
+        .collect();
+    let outline: Vec<bool> = inner.iter().map(|v| v != &[[0.0, 1.0]]).collect();
+    stats.cluster_edges = outline.iter().filter(|o| !**o).count();
+    // Whether a segment can change the QI of what crosses behind it at parameters in `at`.
+    let outline_at =
+        |s: usize, at: [f64; 2]| !inner[s].iter().any(|r| r[0] <= at[0] && at[1] <= r[1]);
 
     // Pairs of segments (with the boxes around shared vertices proven to hold no other
     // crossing), self-crossings of sides, and segment-patch penetrations.
@@ -252,6 +280,10 @@ pub fn hidden_lines(
                 continue;
             }
             stats.pairs += 1;
+            if !outline[a] && !outline[b] {
+                stats.cluster_pairs += 1;
+                continue;
+            }
             if sa.chain == sb.chain && sa.order.abs_diff(sb.order) == 1 && common_monotone(sa, sb) {
                 stats.monotone_pairs += 1;
                 continue;
@@ -350,9 +382,26 @@ pub fn hidden_lines(
                 format!("where it may pass through patch {j} is not isolated"),
             ),
         };
+        // A crossing cuts a segment only if the other segment can change its QI there.
+        let counts = |bx: &[[f64; 2]], s: usize| -> bool {
+            match *job {
+                Job::Pair(a, b) => {
+                    let na = segments[a].domain.len();
+                    let (other, k) = if s == a {
+                        (b, na + segments[b].axis)
+                    } else {
+                        (a, segments[a].axis)
+                    };
+                    outline_at(other, bx[k])
+                }
+                _ => true,
+            }
+        };
         for root in &r.roots {
             for &(s, k) in &targets {
-                events[s].push(Event::cut(root.enclosure[k]));
+                if counts(&root.enclosure, s) {
+                    events[s].push(Event::cut(root.enclosure[k]));
+                }
             }
         }
         let why = if *timed_out {
@@ -362,7 +411,9 @@ pub fn hidden_lines(
         };
         for bx in &r.unresolved {
             for &(s, k) in &targets {
-                events[s].push(Event::unresolved(bx[k], why.clone()));
+                if counts(bx, s) {
+                    events[s].push(Event::unresolved(bx[k], why.clone()));
+                }
             }
         }
     }
@@ -459,6 +510,19 @@ impl Event {
             unresolved: Some(why),
         }
     }
+}
+
+/// The stretches of a segment's parameter across which it is a shared edge and the surface
+/// provably continues in the image ([`super::fold_edges`]); empty for other segments.
+fn inside_cluster(scene: &Scene, s: &Segment) -> Vec<[f64; 2]> {
+    if s.kind != LineKind::Boundary || s.line.is_some() {
+        return Vec::new();
+    }
+    let users: Option<Vec<(usize, Edge, bool)>> =
+        s.on.iter().map(|&(p, e, r)| Some((p, e?, r))).collect();
+    users
+        .and_then(|u| edge_orientations(scene, &u))
+        .map_or_else(Vec::new, |o| continuing_stretches(&o, 6))
 }
 
 /// Whether two patches share a corner or an edge.

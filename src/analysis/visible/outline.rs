@@ -12,7 +12,8 @@
 //!
 //! Children are computed once, on first use, and shared by every thread.
 
-use super::super::projection::{side_restriction, ImagePolys};
+use super::super::fold_edges::{continues_on, edge_orientations};
+use super::super::projection::ImagePolys;
 use super::super::ray::{ImageBounds, Scene};
 use crate::bernstein::Bernstein;
 use crate::number::{Interval, Number, Precision, Rational};
@@ -150,25 +151,14 @@ pub(super) fn may_vanish(p: &IPoly, lo: &[f64], hi: &[f64]) -> bool {
     r.lo() <= 0.0 && r.hi() >= 0.0
 }
 
-/// The strict sign of `p` on the box, if its range proves one (`Some(true)`: positive).
-pub(super) fn strict_sign(p: &IPoly, lo: &[f64], hi: &[f64]) -> Option<bool> {
-    let r = super::super::ray::range_on(p, lo, hi);
-    if r.lo() > 0.0 {
-        Some(true)
-    } else if r.hi() < 0.0 {
-        Some(false)
-    } else {
-        None
-    }
-}
-
 /// What a tree covers.
 #[derive(Debug)]
 pub(super) enum TreeKind {
     /// The contour of a patch: the zeros of its silhouette function.
     Contour { g: IPoly },
     /// An edge, in the side parameter of its first user; `fold` holds the two users'
-    /// orientation polynomials when the edge has exactly two (see [`fold_polys`]).
+    /// orientation polynomials when the edge has exactly two
+    /// ([`crate::analysis::fold_edges`]).
     Side {
         edge: Edge,
         image: Box<IntervalImage>,
@@ -234,16 +224,9 @@ impl Tree {
                 scene_image
             }
             TreeKind::Side { image, fold, .. } => {
-                if let Some([a, b]) = fold {
-                    // The two sheets on opposite sides of the edge's image: not outline.
-                    if let (Some(x), Some(y)) = (
-                        strict_sign(a, &lo[..1], &hi[..1]),
-                        strict_sign(b, &lo[..1], &hi[..1]),
-                    ) {
-                        if x != y {
-                            return None;
-                        }
-                    }
+                // The two sheets on opposite sides of the edge's image: not outline.
+                if fold.as_ref().is_some_and(|o| continues_on(o, lo[0], hi[0])) {
+                    return None;
                 }
                 image
             }
@@ -281,40 +264,6 @@ impl Tree {
             out
         })
     }
-}
-
-/// The sign factor that turns the Jacobian determinant on a side into
-/// `det[image tangent along the side, image of the inward derivative]`.
-fn inward_sign(edge: Edge) -> i64 {
-    match edge {
-        Edge::V0 | Edge::U1 => 1,
-        Edge::V1 | Edge::U0 => -1,
-    }
-}
-
-/// For an edge with two users, the orientation polynomials in the first user's parameter:
-/// `det[T, I_n]` for each user, with `T` the image tangent along the first user's direction
-/// and `I_n` the image of that user's inward derivative. Where they have opposite strict
-/// signs the two sheets lie on opposite sides of the edge's image
-/// (`proofs/visible-regions.md`, lemma 2).
-fn fold_polys(scene: &Scene, users: &[(usize, Edge, bool)]) -> Option<[IPoly; 2]> {
-    let [(p, e, _), (q, f, rev)] = users else {
-        return None;
-    };
-    let det = |patch: usize| -> Poly {
-        let m = &scene.jacobians[patch];
-        &(&m[0][0] * &m[1][1]) - &(&m[0][1] * &m[1][0])
-    };
-    let a = side_restriction(&det(*p), *e).scale(&Rational::from(inward_sign(*e)));
-    let mut b = side_restriction(&det(*q), *f).scale(&Rational::from(inward_sign(*f)));
-    if *rev {
-        // In the first user's parameter t the second runs as 1 − t: its coefficients reverse,
-        // and its tangent turns around.
-        let mut c = b.coeffs().to_vec();
-        c.reverse();
-        b = Bernstein::new(b.degrees(), c).expect("same degree").neg();
-    }
-    Some([a, b].map(|x| x.convert(Precision::F64)))
 }
 
 /// The outline trees of a scene, with the patches' interval images (indexed by patch).
@@ -364,7 +313,7 @@ impl Outline {
                     image: Box::new(IntervalImage::new(
                         &scene.images[first.patch].on_side(first.edge),
                     )),
-                    fold: fold_polys(scene, &users),
+                    fold: edge_orientations(scene, &users),
                     users,
                 };
                 mk(first.patch, kind, [1.0, 0.0], &images)
