@@ -36,12 +36,14 @@ pub fn edge_orientations(scene: &Scene, users: &[(usize, Edge, bool)]) -> Option
     let [(p, e, _), (q, f, rev)] = users else {
         return None;
     };
-    let det = |patch: usize| -> Poly {
+    // The determinant on the side, from the entries restricted to it (univariate products).
+    let det = |patch: usize, side: Edge| -> Poly {
         let m = &scene.jacobians[patch];
-        &(&m[0][0] * &m[1][1]) - &(&m[0][1] * &m[1][0])
+        let r = |x: &Poly| side_restriction(x, side);
+        &(&r(&m[0][0]) * &r(&m[1][1])) - &(&r(&m[0][1]) * &r(&m[1][0]))
     };
-    let a = side_restriction(&det(*p), *e).scale(&Rational::from(inward_sign(*e)));
-    let mut b = side_restriction(&det(*q), *f).scale(&Rational::from(inward_sign(*f)));
+    let a = det(*p, *e).scale(&Rational::from(inward_sign(*e)));
+    let mut b = det(*q, *f).scale(&Rational::from(inward_sign(*f)));
     if *rev {
         // In the first user's parameter t the second runs as 1 − t: its coefficients reverse,
         // and its tangent turns around.

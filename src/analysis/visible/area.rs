@@ -9,7 +9,7 @@
 
 use super::outline::quarters;
 use crate::bernstein::Bernstein;
-use crate::number::{Interval, Precision, Rational};
+use crate::number::{Interval, Precision};
 use crate::surface::RationalPatch;
 
 type IPoly = Bernstein<Interval>;
@@ -101,9 +101,14 @@ impl AreaElement {
         max_level: u32,
         tol: f64,
     ) -> AreaElement {
-        let n = patch.normal();
-        let n2: Bernstein<Rational> = &(&(&n[0] * &n[0]) + &(&n[1] * &n[1])) + &(&n[2] * &n[2]);
-        let n2: IPoly = n2.convert(Precision::F64);
+        // Ñ exact, Ñ · Ñ in intervals (an enclosure of the exact product's coefficients,
+        // `proofs/de-casteljau-enclosure.md`).
+        let n: Vec<IPoly> = patch
+            .normal()
+            .iter()
+            .map(|c| c.convert(Precision::F64))
+            .collect();
+        let n2: IPoly = &(&(&n[0] * &n[0]) + &(&n[1] * &n[1])) + &(&n[2] * &n[2]);
         let w: Option<IPoly> =
             (!patch.is_polynomial()).then(|| patch.homogeneous()[3].convert(Precision::F64));
         // A first estimate of the area (the lower bound on the base grid), for the slack.

@@ -10,10 +10,10 @@ use crate::analysis::ray::FoldPolys;
 use crate::analysis::ray::{ImageBounds, Scene};
 use crate::bernstein::Bernstein;
 use crate::number::Interval;
-use crate::number::Rational;
+use crate::number::{Precision, Rational};
 use std::cell::OnceCell;
 use std::collections::HashMap;
-use std::sync::Mutex;
+use std::sync::{Mutex, OnceLock};
 
 type IPoly = Bernstein<Interval>;
 
@@ -44,8 +44,8 @@ pub(super) struct Context<'a> {
     pub(super) outline: &'a Outline,
     /// Per patch, the silhouette function in f64 intervals.
     pub(super) gs: &'a [IPoly],
-    /// Per patch, its injective boxes.
-    pub(super) injective: &'a [JacobianGrid],
+    /// Per patch, its injective boxes (computed when first needed).
+    pub(super) injective: &'a [OnceLock<JacobianGrid>],
     /// Per patch, which grid blocks the fold lemma holds on (filled when first asked).
     pub(super) folds: &'a [FoldBlocks],
     pub(super) opts: &'a VisibleOptions,
@@ -207,6 +207,18 @@ fn reason(t: &Tree) -> String {
     }
 }
 
+/// The patch's grid of Jacobian ranges (at level 5 at most: `injective.rs`).
+fn jacobian_grid<'a>(ctx: &Context<'a>, p: usize) -> &'a JacobianGrid {
+    ctx.injective[p].get_or_init(|| {
+        let m = &ctx.scene.jacobians[p];
+        let c = |x: &Bernstein<Rational>| x.convert(Precision::F64);
+        JacobianGrid::new(
+            &[c(&m[0][0]), c(&m[0][1]), c(&m[1][0]), c(&m[1][1])],
+            ctx.opts.max_depth.min(5),
+        )
+    })
+}
+
 /// Whether a node lies on the cell's own patch inside the box where its image map is
 /// injective: then none of its points is strictly in front of a point of the cell.
 fn own_excluded(ctx: &Context, p: usize, cell: &CellBox, t: &Tree, n: &Node) -> bool {
@@ -220,7 +232,7 @@ fn own_excluded(ctx: &Context, p: usize, cell: &CellBox, t: &Tree, n: &Node) -> 
     }
     let own = cell
         .own
-        .get_or_init(|| ctx.injective[p].around(cell.level, cell.i, cell.j));
+        .get_or_init(|| jacobian_grid(ctx, p).around(cell.level, cell.i, cell.j));
     if matches!(t.kind, TreeKind::Contour { .. })
         && !own.as_ref().is_some_and(|o| within(n.lo, n.hi, o))
     {

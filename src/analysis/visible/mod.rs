@@ -58,6 +58,10 @@ pub struct VisibleOptions {
     pub area_tolerance: f64,
     /// Ray tests tried per quiet region before it is left unresolved.
     pub samples: usize,
+    /// Clusters: stretches of shared edges across which the surface provably continues in
+    /// the image are not outline ([`super::fold_edges`]). Off: every edge is outline (for
+    /// measuring what clusters save).
+    pub clusters: bool,
 }
 
 impl Default for VisibleOptions {
@@ -70,6 +74,7 @@ impl Default for VisibleOptions {
             area_level: 4,
             area_tolerance: 0.01,
             samples: 6,
+            clusters: true,
         }
     }
 }
@@ -207,21 +212,14 @@ pub fn visible_regions(
         .par_iter()
         .map(|p| silhouette_function(&p.surface, view).convert(Precision::F64))
         .collect();
-    let injective: Vec<_> = scene
-        .jacobians
-        .par_iter()
-        .map(|m| {
-            let c = |p: &crate::bernstein::Bernstein<Rational>| p.convert(Precision::F64);
-            injective::JacobianGrid::new(
-                &[c(&m[0][0]), c(&m[0][1]), c(&m[1][0]), c(&m[1][1])],
-                opts.max_depth.min(5),
-            )
-        })
+    // Computed when a patch first needs one.
+    let injective: Vec<std::sync::OnceLock<injective::JacobianGrid>> = (0..model.patches.len())
+        .map(|_| std::sync::OnceLock::new())
         .collect();
     let folds: Vec<_> = (0..model.patches.len())
         .map(|_| std::sync::Mutex::new(std::collections::HashMap::new()))
         .collect();
-    let outline = outline::Outline::new(&scene, &gs, opts.outline_depth);
+    let outline = outline::Outline::new(&scene, &gs, opts.outline_depth, opts.clusters);
     let ctx = Context {
         scene: &scene,
         outline: &outline,
@@ -380,10 +378,12 @@ fn patch_region(
     }
 
     // Cells, counts, fractions.
+    // Past the deadline, the base grid only (looser bounds, still bounds).
+    let finer = if opts.curve.past_deadline() { 0 } else { 4 };
     let area = area::AreaElement::new(
         &model.patches[p].surface,
         opts.area_level,
-        opts.area_level + 4,
+        opts.area_level + finer,
         opts.area_tolerance,
     );
     let mut cells = Vec::with_capacity(n);

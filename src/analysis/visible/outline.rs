@@ -277,7 +277,8 @@ pub(super) struct Outline {
 
 impl Outline {
     /// The trees of a scene; `gs` are the patches' silhouette functions.
-    pub(super) fn new(scene: &Scene, gs: &[IPoly], max_level: u32) -> Outline {
+    /// Without `clusters` no stretch of an edge is pruned.
+    pub(super) fn new(scene: &Scene, gs: &[IPoly], max_level: u32, clusters: bool) -> Outline {
         let images: Vec<IntervalImage> = scene.images.iter().map(IntervalImage::new).collect();
         let whole = ([0.0, 0.0], [1.0, 1.0]);
         let mk = |patch: usize, kind: TreeKind, hi: [f64; 2], images: &[IntervalImage]| {
@@ -313,7 +314,11 @@ impl Outline {
                     image: Box::new(IntervalImage::new(
                         &scene.images[first.patch].on_side(first.edge),
                     )),
-                    fold: edge_orientations(scene, &users),
+                    fold: if clusters {
+                        edge_orientations(scene, &users)
+                    } else {
+                        None
+                    },
                     users,
                 };
                 mk(first.patch, kind, [1.0, 0.0], &images)

@@ -1,0 +1,242 @@
+//! `limn visible`: the JSON contract on two squares, one in front of the other (a closed form:
+//! three quarters of the lower one visible), SVG output, bad arguments (exit 2, one line), no
+//! overwrite without --force, a time limit, and the fixtures.
+
+use serde_json::Value;
+use std::path::PathBuf;
+
+mod common;
+use common::limn;
+
+fn tmp(name: &str) -> PathBuf {
+    common::tmp("cli_visible", name)
+}
+
+/// The square [0,2]² at z = 0 and the square [1,3]² at z = 1 above it.
+fn two_squares() -> PathBuf {
+    let path = tmp("two_squares.json");
+    let square = |x0: i64, z: i64| {
+        let x1 = x0 + 2;
+        format!(
+            r#"{{"kind":"bezier","degree":[1,1],"points":[[{x0},{x0},{z}],[{x0},{x1},{z}],[{x1},{x0},{z}],[{x1},{x1},{z}]]}}"#
+        )
+    };
+    let text = format!(r#"{{"patches":[{},{}]}}"#, square(0, 0), square(1, 1));
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+fn pair(v: &Value) -> [f64; 2] {
+    [v[0].as_f64().unwrap(), v[1].as_f64().unwrap()]
+}
+
+#[test]
+fn two_squares_json_contract_and_closed_form() {
+    let model = two_squares();
+    let (code, out, err) = limn(&[
+        "visible",
+        model.to_str().unwrap(),
+        "--dir",
+        "1,2,-40",
+        "--format",
+        "json",
+        "--cells",
+    ]);
+    assert_eq!(code, Some(0), "{err}");
+    let r: Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(r["view"]["dir"], serde_json::json!([1.0, 2.0, -40.0]));
+    assert!(r["stats"]["cells"].as_u64().unwrap() > 0);
+    assert!(!r["assumptions"].as_array().unwrap().is_empty());
+    let patches = r["patches"].as_array().unwrap();
+    assert_eq!(patches.len(), 2);
+    // The upper square: nothing in front, one cell, all visible.
+    let upper = &patches[1];
+    assert_eq!(upper["certified"], true);
+    assert_eq!(pair(&upper["domain_fraction"]), [1.0, 1.0]);
+    assert_eq!(upper["facing"], "front");
+    assert_eq!(upper["visible_loops"].as_array().unwrap().len(), 1);
+    // The lower square: the ray from (x, y, 0) towards the viewer, along (−1, −2, 40), meets
+    // z = 1 at (x − 1/40, y − 2/40): the upper square hides [1 + 1/40, 2] × [1 + 2/40, 2] of
+    // it, in its parameters (x/2, y/2) a share (1 − 1/40)(1 − 2/40)/4 of the square.
+    let lower = &patches[0];
+    let hidden = (1.0 - 1.0 / 40.0) * (1.0 - 2.0 / 40.0) / 4.0;
+    let [lo, hi] = pair(&lower["domain_fraction"]);
+    assert!(lo <= 1.0 - hidden && 1.0 - hidden <= hi, "[{lo}, {hi}]");
+    assert!(hi - lo < 0.03, "[{lo}, {hi}]");
+    // A bilinear square has a constant area element: the area share is the square share.
+    let [alo, ahi] = pair(&lower["area_fraction"]);
+    assert!(alo <= 1.0 - hidden && 1.0 - hidden <= ahi, "[{alo}, {ahi}]");
+    let [counts_v, counts_h, counts_u] = [0, 1, 2].map(|k| lower["counts"][k].as_u64().unwrap());
+    let cells = lower["cells"].as_array().unwrap();
+    assert_eq!(cells.len() as u64, counts_v + counts_h + counts_u);
+    for c in cells {
+        let (l, h) = (pair(&c["lo"]), pair(&c["hi"]));
+        // Cells proven visible lie outside the hidden rectangle, hidden ones inside it.
+        let (x0, y0) = (1.0 + 1.0 / 40.0, 1.0 + 2.0 / 40.0);
+        match c["qi"].as_u64() {
+            Some(0) => assert!(h[0] * 2.0 <= x0 || h[1] * 2.0 <= y0, "{c}"),
+            Some(1) => assert!(l[0] * 2.0 >= x0 && l[1] * 2.0 >= y0, "{c}"),
+            Some(q) => panic!("QI {q}: {c}"),
+            None => assert!(!c["reason"].as_str().unwrap().is_empty()),
+        }
+    }
+    let loops = lower["visible_loops"].as_array().unwrap();
+    assert!(!loops.is_empty());
+    for l in loops {
+        assert_eq!(
+            l["uv"].as_array().unwrap().len(),
+            l["xyz"].as_array().unwrap().len()
+        );
+    }
+    // Without --cells the cells are left out.
+    let (_, out, _) = limn(&[
+        "visible",
+        model.to_str().unwrap(),
+        "--dir",
+        "1,2,-40",
+        "--format",
+        "json",
+    ]);
+    let r: Value = serde_json::from_str(&out).unwrap();
+    assert!(r["patches"][0]["cells"].as_array().unwrap().is_empty());
+}
+
+#[test]
+fn text_and_svg_output_and_no_overwrite() {
+    let model = two_squares();
+    let (code, out, err) = limn(&["visible", model.to_str().unwrap(), "--dir", "1,2,-40"]);
+    assert_eq!(code, Some(0), "{err}");
+    assert!(out.contains("visible share of the surface area"), "{out}");
+    let svg = tmp("squares.svg");
+    let _ = std::fs::remove_file(&svg);
+    let args = [
+        "visible",
+        model.to_str().unwrap(),
+        "--dir",
+        "1,2,-40",
+        "--format",
+        "svg",
+        "-o",
+        svg.to_str().unwrap(),
+    ];
+    let (code, _, err) = limn(&args);
+    assert_eq!(code, Some(0), "{err}");
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert!(text.starts_with("<svg") && text.contains("evenodd"));
+    let (code, _, err) = limn(&args);
+    assert_eq!(code, Some(2), "{err}");
+    assert!(err.contains("exists"), "{err}");
+    assert_eq!(std::fs::read_to_string(&svg).unwrap(), text);
+}
+
+#[test]
+fn bad_arguments_exit_2_with_one_line() {
+    let model = two_squares();
+    let m = model.to_str().unwrap();
+    for (args, needle) in [
+        (vec!["visible", m, "--dir", "0,0,0"], "zero"),
+        (
+            vec!["visible", m, "--dir", "1,2,-40", "--cell-depth", "0"],
+            "--cell-depth",
+        ),
+        (
+            vec!["visible", m, "--dir", "1,2,-40", "--cell-depth", "15"],
+            "--cell-depth",
+        ),
+        (
+            vec!["visible", m, "--dir", "1,2,-40", "--tol", "1e-6"],
+            "--tol",
+        ),
+        (
+            vec!["visible", m, "--eye", "2,2,1/2"],
+            "in front of the eye",
+        ),
+        (
+            vec![
+                "visible",
+                "fixtures/meshes/keenan/spot/spot_control_mesh.obj",
+                "--dir",
+                "1,2,3",
+            ],
+            "polygon mesh",
+        ),
+        (
+            vec!["visible", "no/such/file.json", "--dir", "1,2,3"],
+            "no/such/file.json",
+        ),
+    ] {
+        let (code, out, err) = limn(&args);
+        assert_eq!(code, Some(2), "{args:?}: {out}{err}");
+        assert_eq!(err.trim().lines().count(), 1, "{args:?}: {err}");
+        assert!(err.contains(needle), "{args:?}: {err}");
+    }
+}
+
+#[test]
+fn a_time_limit_leaves_the_rest_unresolved() {
+    let model = two_squares();
+    let (code, out, err) = limn(&[
+        "visible",
+        model.to_str().unwrap(),
+        "--dir",
+        "1,2,-6",
+        "--format",
+        "json",
+        "--time-limit",
+        "0.000001",
+    ]);
+    assert_eq!(code, Some(0), "{err}");
+    let r: Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(r["certified"], false);
+    let [lo, hi] = pair(&r["area_fraction"]);
+    assert!(lo == 0.0 && hi == 1.0, "[{lo}, {hi}]");
+    for p in r["patches"].as_array().unwrap() {
+        for u in p["unresolved"].as_array().unwrap() {
+            assert!(u["reason"].as_str().unwrap().contains("time limit"), "{u}");
+        }
+    }
+}
+
+/// Every patch fixture from two directions under a time limit: no panic, a well-formed report,
+/// every unresolved cell explained, fractions ordered.
+#[test]
+fn fixtures_under_a_time_limit() {
+    for model in [
+        "fixtures/bezier/teapot.bpt",
+        "fixtures/bezier/newell_teaset/teacup",
+        "fixtures/bezier/newell_teaset/teaspoon",
+        "fixtures/iges/occt/bug22869_Spring.igs",
+        "fixtures/iges/occt/occ22470.igs",
+    ] {
+        for dir in ["2,3,-2", "-1,1,1"] {
+            let (code, out, err) = limn(&[
+                "visible",
+                model,
+                "--dir",
+                dir,
+                "--format",
+                "json",
+                "--cell-depth",
+                "6",
+                "--time-limit",
+                "2",
+            ]);
+            assert_eq!(code, Some(0), "{model} {dir}: {err}");
+            let r: Value = serde_json::from_str(&out).unwrap();
+            let [lo, hi] = pair(&r["area_fraction"]);
+            assert!(0.0 <= lo && lo <= hi && hi <= 1.0, "{model} {dir}");
+            for p in r["patches"].as_array().unwrap() {
+                let [a, b] = pair(&p["domain_fraction"]);
+                assert!(0.0 <= a && a <= b && b <= 1.0);
+                for u in p["unresolved"].as_array().unwrap() {
+                    assert!(!u["reason"].as_str().unwrap().is_empty());
+                }
+            }
+            println!(
+                "{model} from {dir}: area share [{lo:.4}, {hi:.4}], {} cells, {:.0} ms",
+                r["stats"]["cells"],
+                r["time_ms"].as_f64().unwrap()
+            );
+        }
+    }
+}
