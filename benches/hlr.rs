@@ -1,5 +1,6 @@
 //! Hidden-line drawings (issue 5): the torus and two spheres from one skew direction (criterion
-//! medians, 1 and 2 threads), and the teapot from (2,3,-2) and (1,2,3), timed as whole runs
+//! medians, 1 and 2 threads), and the teapot from (2,3,-2) and (1,2,3) with and without clusters,
+//! timed as whole runs
 //! (each takes seconds: `LIMN_BENCH_TEAPOT=1` to include them, a few runs, the median printed).
 
 use criterion::{criterion_group, criterion_main, Criterion};
@@ -45,7 +46,16 @@ fn benches(c: &mut Criterion) {
     g.finish();
     if std::env::var_os("LIMN_BENCH_TEAPOT").is_some() {
         let teapot = limn::testing::teapot();
-        for d in [[2, 3, -2], [1, 2, 3]] {
+        let off = HlrOptions {
+            clusters: false,
+            ..HlrOptions::default()
+        };
+        for (d, opts, label) in [
+            ([2, 3, -2], &opts, "clusters"),
+            ([1, 2, 3], &opts, "clusters"),
+            ([2, 3, -2], &off, "no-clusters"),
+            ([1, 2, 3], &off, "no-clusters"),
+        ] {
             for threads in [1, 2] {
                 let pool = rayon::ThreadPoolBuilder::new()
                     .num_threads(threads)
@@ -55,9 +65,7 @@ fn benches(c: &mut Criterion) {
                     .map(|_| {
                         let t = std::time::Instant::now();
                         let h = pool
-                            .install(|| {
-                                hidden_lines(&teapot, &view(d), &opts, WeldTolerance::Exact)
-                            })
+                            .install(|| hidden_lines(&teapot, &view(d), opts, WeldTolerance::Exact))
                             .unwrap();
                         std::hint::black_box(h);
                         t.elapsed().as_secs_f64()
@@ -65,7 +73,7 @@ fn benches(c: &mut Criterion) {
                     .collect();
                 times.sort_by(f64::total_cmp);
                 println!(
-                    "hlr/teapot-{d:?}-{threads}-threads: median {:.2} s of 3 runs",
+                    "hlr/teapot-{d:?}-{label}-{threads}-threads: median {:.2} s of 3 runs",
                     times[1]
                 );
             }

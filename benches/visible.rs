@@ -1,0 +1,94 @@
+//! Visible regions (issue 5): two spheres from one skew direction (criterion medians, 1 and 2
+//! threads), and the teapot from (2,3,-2) at cell depths 6 and 8, 1 and 2 threads, with and
+//! without clusters, timed as whole runs (`LIMN_BENCH_TEAPOT=1` to include them; the median of
+//! 3 runs is printed with the bounds on the visible share of the area).
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use limn::analysis::silhouette::View;
+use limn::analysis::visible::{visible_regions, VisibleOptions};
+use limn::model::{Format, Model, WeldTolerance};
+use limn::number::Rational;
+use limn::testing::shapes;
+
+fn view(d: [i64; 3]) -> View {
+    View::Direction(d.map(Rational::from))
+}
+
+fn pool(threads: usize) -> rayon::ThreadPool {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap()
+}
+
+fn benches(c: &mut Criterion) {
+    let mut spheres = shapes::sphere(&Rational::from(1));
+    spheres.extend(
+        shapes::sphere(&Rational::from(1)).into_iter().map(|p| {
+            p.map_points(|x| std::array::from_fn(|k| Rational::from(&x[k] + [1, 0, -3][k])))
+        }),
+    );
+    let spheres = Model::from_patches(Format::Json, spheres);
+    let opts = VisibleOptions {
+        max_depth: 6,
+        ..VisibleOptions::default()
+    };
+    let mut g = c.benchmark_group("visible");
+    g.sample_size(10);
+    for threads in [1, 2] {
+        let pool = pool(threads);
+        g.bench_function(
+            format!("two-spheres-1,2,3-depth-6-{threads}-threads"),
+            |b| {
+                b.iter(|| {
+                    pool.install(|| {
+                        visible_regions(&spheres, &view([1, 2, 3]), &opts, WeldTolerance::Exact)
+                    })
+                    .unwrap()
+                })
+            },
+        );
+    }
+    g.finish();
+    if std::env::var_os("LIMN_BENCH_TEAPOT").is_some() {
+        let teapot = limn::testing::teapot();
+        for depth in [6, 8] {
+            for clusters in [true, false] {
+                for threads in [1, 2] {
+                    let opts = VisibleOptions {
+                        max_depth: depth,
+                        clusters,
+                        ..VisibleOptions::default()
+                    };
+                    let pool = pool(threads);
+                    let mut share = [0.0; 2];
+                    let mut times: Vec<f64> = (0..3)
+                        .map(|_| {
+                            let t = std::time::Instant::now();
+                            let r = pool
+                                .install(|| {
+                                    visible_regions(
+                                        &teapot,
+                                        &view([2, 3, -2]),
+                                        &opts,
+                                        WeldTolerance::Exact,
+                                    )
+                                })
+                                .unwrap();
+                            share = r.area_fraction;
+                            t.elapsed().as_secs_f64()
+                        })
+                        .collect();
+                    times.sort_by(f64::total_cmp);
+                    println!(
+                        "visible/teapot-2,3,-2-depth-{depth}-clusters-{clusters}-{threads}-threads: median {:.2} s of 3 runs, area share [{:.4}, {:.4}]",
+                        times[1], share[0], share[1]
+                    );
+                }
+            }
+        }
+    }
+}
+
+criterion_group!(visible_benches, benches);
+criterion_main!(visible_benches);
