@@ -456,12 +456,7 @@ where
             let report = HlrReport::new(&name, &view, &h, ms, pool.current_num_threads());
             let text = match format {
                 HlrFormat::Text => report.text(),
-                HlrFormat::Json => {
-                    serde_json::to_string_pretty(&report).map_err(|e| CliError {
-                        message: e.to_string(),
-                        code: 1,
-                    })? + "\n"
-                }
+                HlrFormat::Json => pretty_json(&report)?,
                 HlrFormat::Svg => {
                     let title = format!(
                         "{}: hidden lines, {} pieces, {}",
@@ -521,12 +516,7 @@ where
                 VisibleReport::new(&name, &view, &r, cells, ms, pool.current_num_threads());
             let text = match format {
                 HlrFormat::Text => report.text(),
-                HlrFormat::Json => {
-                    serde_json::to_string_pretty(&report).map_err(|e| CliError {
-                        message: e.to_string(),
-                        code: 1,
-                    })? + "\n"
-                }
+                HlrFormat::Json => pretty_json(&report)?,
                 HlrFormat::Svg => {
                     let title = format!(
                         "{}: visible regions, area share [{:.4}, {:.4}]{}",
@@ -760,6 +750,16 @@ fn refuse_overwrite<'a>(
 }
 
 /// Writes a command's text to the file asked for, or to standard output.
+/// A report as pretty JSON with a final newline (exit code 1 if it cannot be written).
+fn pretty_json(report: &impl serde::Serialize) -> Result<String, CliError> {
+    serde_json::to_string_pretty(report)
+        .map(|t| t + "\n")
+        .map_err(|e| CliError {
+            message: e.to_string(),
+            code: 1,
+        })
+}
+
 fn write_output(output: Option<PathBuf>, text: &str, out: &mut dyn Write) -> Result<(), CliError> {
     match output {
         Some(path) => std::fs::write(&path, text).map_err(|e| CliError {
@@ -807,12 +807,7 @@ fn render_silhouette(
     s: &Silhouette,
 ) -> Result<String, CliError> {
     Ok(match format {
-        CurveFormat::Json => {
-            serde_json::to_string_pretty(report).map_err(|e| CliError {
-                message: e.to_string(),
-                code: 1,
-            })? + "\n"
-        }
+        CurveFormat::Json => pretty_json(report)?,
         CurveFormat::Svg => {
             let title = format!(
                 "{}: {} {} curves ({}), {} unresolved regions",

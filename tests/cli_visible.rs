@@ -12,18 +12,8 @@ fn tmp(name: &str) -> PathBuf {
     common::tmp("cli_visible", name)
 }
 
-/// The square [0,2]² at z = 0 and the square [1,3]² at z = 1 above it.
 fn two_squares() -> PathBuf {
-    let path = tmp("two_squares.json");
-    let square = |x0: i64, z: i64| {
-        let x1 = x0 + 2;
-        format!(
-            r#"{{"kind":"bezier","degree":[1,1],"points":[[{x0},{x0},{z}],[{x0},{x1},{z}],[{x1},{x0},{z}],[{x1},{x1},{z}]]}}"#
-        )
-    };
-    let text = format!(r#"{{"patches":[{},{}]}}"#, square(0, 0), square(1, 1));
-    std::fs::write(&path, text).unwrap();
-    path
+    common::two_squares("cli_visible")
 }
 
 fn pair(v: &Value) -> [f64; 2] {

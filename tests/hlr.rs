@@ -10,17 +10,10 @@ use limn::surface::RationalPatch;
 use limn::testing::shapes;
 
 mod analytic;
-use analytic::{reference_at, Shape, Viewer};
+use analytic::{reference_at, shifted, Shape, Viewer};
 
 fn q(n: i64) -> Rational {
     Rational::from(n)
-}
-
-fn shifted(patches: Vec<RationalPatch>, by: [i64; 3]) -> Vec<RationalPatch> {
-    patches
-        .into_iter()
-        .map(|p| p.map_points(|x| std::array::from_fn(|k| Rational::from(&x[k] + by[k]))))
-        .collect()
 }
 
 /// Checks every certified piece against the reference at its interior drawn points; returns

@@ -68,7 +68,7 @@ pub fn ratio_bounds(num: &Poly, den: &Poly) -> [f64; 2] {
 }
 
 /// Both polynomials at their common degrees.
-fn same_degrees(a: &Poly, b: &Poly) -> (Poly, Poly) {
+pub(crate) fn same_degrees(a: &Poly, b: &Poly) -> (Poly, Poly) {
     let deg: Vec<usize> = a
         .degrees()
         .iter()
@@ -575,6 +575,23 @@ pub fn fold_box_around(
     })
 }
 
+/// The image direction along which the outline of patch `j` runs near the parameter point
+/// `mid`, approximately: a nonzero column of the Jacobian there (at a fold both columns are
+/// parallel to the outline tangent). `None` if the Jacobian vanishes there.
+pub(crate) fn outline_direction(scene: &Scene, j: usize, mid: &[Rational]) -> Option<[f64; 2]> {
+    let jac = &scene.jacobians[j];
+    let g = |p: &Poly| p.eval(mid).to_f64();
+    let cu = [g(&jac[0][0]), g(&jac[1][0])];
+    let cv = [g(&jac[0][1]), g(&jac[1][1])];
+    let t = if cu[0].hypot(cu[1]) >= cv[0].hypot(cv[1]) {
+        cu
+    } else {
+        cv
+    };
+    let norm = t[0].hypot(t[1]);
+    (norm.is_finite() && norm > 0.0).then_some(t)
+}
+
 /// κ, η, q and their first and second partial derivatives, in interval form: what the fold
 /// lemma is checked on (`proofs/ray-count.md`).
 pub(crate) struct FoldPolys {
@@ -590,16 +607,13 @@ impl FoldPolys {
     /// proven for whatever rotation is chosen; a good one only makes it succeed. `None` if
     /// the Jacobian vanishes there.
     pub(crate) fn at(scene: &Scene, j: usize, mid: &[Rational]) -> Option<FoldPolys> {
+        FoldPolys::along(scene, j, outline_direction(scene, j, mid)?)
+    }
+
+    /// The polynomials of patch `j` with κ along the image direction `t` (rounded to a
+    /// rational direction on a grid of 1/1024), or `None` if that rounds to zero.
+    pub(crate) fn along(scene: &Scene, j: usize, t: [f64; 2]) -> Option<FoldPolys> {
         let im = &scene.images[j];
-        let jac = &scene.jacobians[j];
-        let g = |p: &Poly| p.eval(mid).to_f64();
-        let cu = [g(&jac[0][0]), g(&jac[1][0])];
-        let cv = [g(&jac[0][1]), g(&jac[1][1])];
-        let t = if cu[0].hypot(cu[1]) >= cv[0].hypot(cv[1]) {
-            cu
-        } else {
-            cv
-        };
         let norm = t[0].hypot(t[1]);
         if norm.is_nan() || norm <= 0.0 {
             return None;
@@ -619,7 +633,12 @@ impl FoldPolys {
     /// Whether the fold lemma holds on the box: then the fibre, within the box, of every
     /// fold point in it is that point alone.
     pub(crate) fn holds(&self, lo: &[f64], hi: &[f64]) -> bool {
-        fold_signs(self, lo, hi, 3).is_some()
+        self.holds_within(lo, hi, 3)
+    }
+
+    /// [`FoldPolys::holds`], with the box halved at most `depth` times to prove it.
+    pub(crate) fn holds_within(&self, lo: &[f64], hi: &[f64], depth: u32) -> bool {
+        fold_signs(self, lo, hi, depth).is_some()
     }
 
     fn new(kappa: &Poly, eta: &Poly, q: &Poly) -> FoldPolys {

@@ -62,6 +62,24 @@ proptest! {
         prop_assert!(ia.neg().contains_rational(&Rational::from(-&a)));
     }
 
+    /// Interval products round each bound exactly in its direction (the error-free product:
+    /// `fma`, or Dekker's product without hardware FMA), where the product is in the range
+    /// where the error is computed exactly (`proofs/outward-rounding.md`, item 3).
+    #[test]
+    fn products_round_in_their_direction(a in -1e150f64..1e150, b in -1e150f64..1e150, sa in -300i32..300) {
+        let a = a * 2f64.powi(sa);
+        let (lo, hi) = super::interval::mul_rd_ru(a, b);
+        let exact = Rational::from_f64(a).unwrap() * Rational::from_f64(b).unwrap();
+        let down = rug::Float::with_val_round(53, &exact, rug::float::Round::Down).0.to_f64();
+        let up = rug::Float::with_val_round(53, &exact, rug::float::Round::Up).0.to_f64();
+        let p = a * b;
+        if p.is_finite() && p.abs() >= 1e-250 && p.abs() <= 1e290 {
+            prop_assert_eq!((lo, hi), (down, up), "{} * {}", a, b);
+        } else {
+            prop_assert!(lo <= down && up <= hi);
+        }
+    }
+
     /// MPFR intervals contain the exact result at several precisions.
     #[test]
     fn mpfr_interval_encloses(a in rational(), b in rational(), p in prop_oneof![Just(24u32), Just(53), Just(128), Just(300)]) {

@@ -3,6 +3,17 @@
 //! (near-tangent rays, roots near the point) refused rather than guessed.
 #![allow(dead_code)]
 
+use limn::number::Rational;
+use limn::surface::RationalPatch;
+
+/// Patches moved by an integer vector (exactly).
+pub fn shifted(patches: Vec<RationalPatch>, by: [i64; 3]) -> Vec<RationalPatch> {
+    patches
+        .into_iter()
+        .map(|p| p.map_points(|x| std::array::from_fn(|k| Rational::from(&x[k] + by[k]))))
+        .collect()
+}
+
 /// An analytic shape: a sphere (centre, radius) or a torus about the z axis (centre, R, r).
 #[derive(Clone, Copy, Debug)]
 pub enum Shape {

@@ -1,4 +1,5 @@
-//! Helpers shared by the CLI tests: run the `limn` binary, and a scratch folder per test file.
+//! Helpers shared by the CLI tests: run the `limn` binary, a scratch folder per test file, and
+//! a small model with a closed-form answer.
 
 use std::path::PathBuf;
 use std::process::Command;
@@ -22,4 +23,20 @@ pub fn tmp(folder: &str, name: &str) -> PathBuf {
     let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(folder);
     std::fs::create_dir_all(&dir).unwrap();
     dir.join(name)
+}
+
+/// The square [0,2]² at z = 0 and the square [1,3]² at z = 1 above it, written to the test
+/// file's scratch folder.
+#[allow(dead_code)] // not every test file that shares this module draws squares
+pub fn two_squares(folder: &str) -> PathBuf {
+    let path = tmp(folder, "two_squares.json");
+    let square = |x0: i64, z: i64| {
+        let x1 = x0 + 2;
+        format!(
+            r#"{{"kind":"bezier","degree":[1,1],"points":[[{x0},{x0},{z}],[{x0},{x1},{z}],[{x1},{x0},{z}],[{x1},{x1},{z}]]}}"#
+        )
+    };
+    let text = format!(r#"{{"patches":[{},{}]}}"#, square(0, 0), square(1, 1));
+    std::fs::write(&path, text).unwrap();
+    path
 }

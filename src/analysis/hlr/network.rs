@@ -6,7 +6,7 @@ use super::super::projection::{side_point, ImagePolys};
 use super::super::ray::{fix_axis, ratio_bounds, ImageBounds, Scene};
 use super::*;
 use crate::bernstein::Bernstein;
-use crate::number::{Interval, Precision, Rational};
+use crate::number::{Interval, Precision, Rational, Sign};
 use crate::solver::dyadic::Dyadic;
 use crate::solver::precision::Ladder;
 use crate::solver::system::DyadicBoxN;
@@ -119,14 +119,10 @@ fn sign_on(p: &Bernstein<Interval>, domain: &DyadicBoxN) -> Option<bool> {
         .iter()
         .map(|d| Interval::point(d.1.to_f64_bounds().1))
         .collect();
-    let r = p.restrict_box(&lo, &hi);
-    let c = r.coeffs();
-    if c.iter().all(|x| x.lo() > 0.0) {
-        Some(true)
-    } else if c.iter().all(|x| x.hi() < 0.0) {
-        Some(false)
-    } else {
-        None
+    match p.restrict_box(&lo, &hi).range_sign() {
+        Sign::Positive => Some(true),
+        Sign::Negative => Some(false),
+        _ => None,
     }
 }
 

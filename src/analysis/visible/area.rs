@@ -51,24 +51,28 @@ fn density(n2: &IPoly, w: Option<&IPoly>) -> [f64; 2] {
     [a.max(0.0), b]
 }
 
-/// Builds the tree below a box at `level` (parameter area `4^-level`).
-fn build(n2: &IPoly, w: Option<&IPoly>, level: u32, max_level: u32, slack: f64) -> DensityNode {
-    let d = density(n2, w);
-    let box_area = 0.25f64.powi(level as i32);
-    if level >= max_level || (d[1] - d[0]) * box_area <= slack {
-        return DensityNode::Leaf(d);
+/// Builds the tree below a box at `level` (parameter area `4^-level`): split while above
+/// `base_level`, or while its bounds leave more than `slack` undecided, down to `max_level`.
+fn build(
+    n2: &IPoly,
+    w: Option<&IPoly>,
+    level: u32,
+    [base_level, max_level]: [u32; 2],
+    slack: f64,
+) -> DensityNode {
+    if level >= base_level {
+        let d = density(n2, w);
+        let box_area = 0.25f64.powi(level as i32);
+        if level >= max_level || (d[1] - d[0]) * box_area <= slack {
+            return DensityNode::Leaf(d);
+        }
     }
     let nq = quarters(n2);
     let wq = w.map(quarters);
     let kids: Vec<DensityNode> = (0..4)
         .map(|k| {
-            build(
-                &nq[k],
-                wq.as_ref().map(|q| &q[k]),
-                level + 1,
-                max_level,
-                slack,
-            )
+            let wk = wq.as_ref().map(|q| &q[k]);
+            build(&nq[k], wk, level + 1, [base_level, max_level], slack)
         })
         .collect();
     let mut sum = [0.0, 0.0];
@@ -112,10 +116,9 @@ impl AreaElement {
         let w: Option<IPoly> =
             (!patch.is_polynomial()).then(|| patch.homogeneous()[3].convert(Precision::F64));
         // A first estimate of the area (the lower bound on the base grid), for the slack.
-        let base = build_base(&n2, w.as_ref(), 0, base_level, base_level, 0.0);
+        let base = build(&n2, w.as_ref(), 0, [base_level, base_level], 0.0);
         let slack = tol * node_area(&base, 0)[0] * 0.25f64.powi(base_level as i32);
-        // Boxes coarser than the base grid always split.
-        let root = build_base(&n2, w.as_ref(), 0, base_level, max_level, slack);
+        let root = build(&n2, w.as_ref(), 0, [base_level, max_level], slack);
         AreaElement { root }
     }
 
@@ -141,40 +144,4 @@ impl AreaElement {
             }
         }
     }
-}
-
-/// As [`build`], splitting every box above `base_level`.
-fn build_base(
-    n2: &IPoly,
-    w: Option<&IPoly>,
-    level: u32,
-    base_level: u32,
-    max_level: u32,
-    slack: f64,
-) -> DensityNode {
-    if level >= base_level {
-        return build(n2, w, level, max_level, slack);
-    }
-    let nq = quarters(n2);
-    let wq = w.map(quarters);
-    let kids: Vec<DensityNode> = (0..4)
-        .map(|k| {
-            build_base(
-                &nq[k],
-                wq.as_ref().map(|q| &q[k]),
-                level + 1,
-                base_level,
-                max_level,
-                slack,
-            )
-        })
-        .collect();
-    let mut sum = [0.0, 0.0];
-    for kid in &kids {
-        let a = node_area(kid, level + 1);
-        sum[0] += a[0];
-        sum[1] += a[1];
-    }
-    let kids: [DensityNode; 4] = kids.try_into().unwrap_or_else(|_| unreachable!());
-    DensityNode::Split(Box::new(kids), sum)
 }

@@ -4,16 +4,16 @@
 //! quiet neighbours, `proofs/visible-regions.md`, claim 1) or blocked by what may be in front.
 
 use super::injective::JacobianGrid;
-use super::outline::{coefficient_sign, quarters, IntervalImage, Node, Outline, Tree, TreeKind};
+use super::outline::{quarters, IntervalImage, Node, Outline, Tree, TreeKind};
 use super::VisibleOptions;
-use crate::analysis::ray::FoldPolys;
+use crate::analysis::ray::{outline_direction, FoldPolys};
 use crate::analysis::ray::{ImageBounds, Scene};
 use crate::bernstein::Bernstein;
 use crate::number::Interval;
-use crate::number::{Precision, Rational};
+use crate::number::{Precision, Rational, Sign};
 use std::cell::OnceCell;
 use std::collections::HashMap;
-use std::sync::{Mutex, OnceLock};
+use std::sync::{Arc, Mutex, OnceLock};
 
 type IPoly = Bernstein<Interval>;
 
@@ -53,8 +53,18 @@ pub(super) struct Context<'a> {
 
 type Cand<'a> = (&'a Tree, &'a Node);
 
-/// Per grid block `(level, i, j)`, whether the fold lemma holds on it.
-pub(super) type FoldBlocks = Mutex<HashMap<(u32, u32, u32), bool>>;
+/// Per patch: per grid block `(level, i, j)`, whether the fold lemma holds on it; and the fold
+/// polynomials per quantized outline direction (one of [`DIRECTIONS`] over a half turn).
+#[derive(Default)]
+pub(super) struct FoldBlocks {
+    blocks: Mutex<HashMap<(u32, u32, u32), bool>>,
+    polys: Mutex<HashMap<u32, Option<Arc<FoldPolys>>>>,
+}
+
+/// Outline directions are quantized to this many per half turn, so that each patch builds few
+/// fold polynomials (the lemma holds for whatever rotation is used; a close one makes it
+/// succeed).
+const DIRECTIONS: u32 = 32;
 
 /// A cell's geometry.
 struct CellBox {
@@ -154,7 +164,7 @@ fn visit<'a>(
         }
     };
     // Its own contour inside: split (the QI changes across it).
-    if coefficient_sign(&polys.g).is_none() {
+    if !matches!(polys.g.range_sign(), Sign::Positive | Sign::Negative) {
         if split {
             recurse(cands, out);
         } else {
@@ -260,11 +270,12 @@ fn own_excluded(ctx: &Context, p: usize, cell: &CellBox, t: &Tree, n: &Node) -> 
 }
 
 /// Whether the cell and a node of its own contour lie in one block of grid boxes (the 3×3
-/// boxes around the cell's ancestor at levels 2 to 7) on which the fold lemma holds
+/// boxes around the cell's ancestor at levels 7 down to 2, the smallest that holds the node
+/// first) on which the fold lemma holds
 /// (`proofs/ray-count.md`): then no contour point of the node has the image of a point of
 /// the cell (its fibre in the block is itself, and the cell's points are not on the contour).
 fn in_fold_block(ctx: &Context, p: usize, cell: &CellBox, n: &Node) -> bool {
-    for level in 2..=cell.level.min(7) {
+    for level in (2..=cell.level.min(7)).rev() {
         let s = cell.level - level;
         let (a, b) = (cell.i >> s, cell.j >> s);
         let last = (1u32 << level) - 1;
@@ -279,7 +290,9 @@ fn in_fold_block(ctx: &Context, p: usize, cell: &CellBox, n: &Node) -> bool {
             continue;
         }
         let key = (level, a, b);
-        let known = ctx.folds[p]
+        let folds = &ctx.folds[p];
+        let known = folds
+            .blocks
             .lock()
             .expect("no poisoning")
             .get(&key)
@@ -289,8 +302,8 @@ fn in_fold_block(ctx: &Context, p: usize, cell: &CellBox, n: &Node) -> bool {
                 dyadic_rational(a0 + a1 + 1, level + 1),
                 dyadic_rational(b0 + b1 + 1, level + 1),
             ];
-            let h = FoldPolys::at(ctx.scene, p, &mid).is_some_and(|f| f.holds(&block.0, &block.1));
-            ctx.folds[p].lock().expect("no poisoning").insert(key, h);
+            let h = fold_polys(ctx, p, &mid).is_some_and(|f| f.holds_within(&block.0, &block.1, 2));
+            folds.blocks.lock().expect("no poisoning").insert(key, h);
             h
         });
         if holds {
@@ -298,6 +311,26 @@ fn in_fold_block(ctx: &Context, p: usize, cell: &CellBox, n: &Node) -> bool {
         }
     }
     false
+}
+
+/// The fold polynomials of patch `p` for the outline direction near `mid`, quantized.
+fn fold_polys(ctx: &Context, p: usize, mid: &[Rational]) -> Option<Arc<FoldPolys>> {
+    let t = outline_direction(ctx.scene, p, mid)?;
+    let half_turn = std::f64::consts::PI;
+    let angle = t[1].atan2(t[0]).rem_euclid(half_turn);
+    let bin = ((angle / half_turn * DIRECTIONS as f64).round() as u32) % DIRECTIONS;
+    let folds = &ctx.folds[p];
+    if let Some(f) = folds.polys.lock().expect("no poisoning").get(&bin) {
+        return f.clone();
+    }
+    let a = bin as f64 * half_turn / DIRECTIONS as f64;
+    let f = FoldPolys::along(ctx.scene, p, [a.cos(), a.sin()]).map(Arc::new);
+    folds
+        .polys
+        .lock()
+        .expect("no poisoning")
+        .insert(bin, f.clone());
+    f
 }
 
 /// `num / 2^shift` as a rational.

@@ -216,8 +216,8 @@ pub fn visible_regions(
     let injective: Vec<std::sync::OnceLock<injective::JacobianGrid>> = (0..model.patches.len())
         .map(|_| std::sync::OnceLock::new())
         .collect();
-    let folds: Vec<_> = (0..model.patches.len())
-        .map(|_| std::sync::Mutex::new(std::collections::HashMap::new()))
+    let folds: Vec<cells::FoldBlocks> = (0..model.patches.len())
+        .map(|_| cells::FoldBlocks::default())
         .collect();
     let outline = outline::Outline::new(&scene, &gs, opts.outline_depth, opts.clusters);
     let ctx = Context {

@@ -14,7 +14,7 @@
 
 use super::super::fold_edges::{continues_on, edge_orientations};
 use super::super::projection::ImagePolys;
-use super::super::ray::{ImageBounds, Scene};
+use super::super::ray::{same_degrees, ImageBounds, Scene};
 use crate::bernstein::Bernstein;
 use crate::number::{Interval, Number, Precision, Rational};
 use crate::surface::Edge;
@@ -33,24 +33,13 @@ pub(super) struct IntervalImage {
     w: IPoly,
 }
 
-/// Both polynomials at their common degrees.
-fn common(a: &Poly, b: &Poly) -> (Poly, Poly) {
-    let deg: Vec<usize> = a
-        .degrees()
-        .iter()
-        .zip(b.degrees())
-        .map(|(x, y)| *x.max(y))
-        .collect();
-    (a.elevate_to(&deg), b.elevate_to(&deg))
-}
-
 impl IntervalImage {
     pub(super) fn new(im: &ImagePolys) -> IntervalImage {
         let c = |p: &Poly| p.convert::<Interval>(Precision::F64);
-        let (x, q) = common(&im.x, &im.q);
-        let (y, q2) = common(&im.y, &q);
-        let (x, _) = common(&x, &q2);
-        let (depth, w) = common(&im.depth, &im.w);
+        let (x, q) = same_degrees(&im.x, &im.q);
+        let (y, q2) = same_degrees(&im.y, &q);
+        let (x, _) = same_degrees(&x, &q2);
+        let (depth, w) = same_degrees(&im.depth, &im.w);
         IntervalImage {
             x: c(&x),
             y: c(&y),
@@ -115,19 +104,6 @@ fn coefficient_ratio(num: &IPoly, den: &IPoly) -> Option<[f64; 2]> {
         hi = hi.max(x.hi());
     }
     Some([lo, hi])
-}
-
-/// The strict sign of a polynomial's coefficients, if they share one (`Some(true)`:
-/// positive): then the polynomial has that sign on its whole domain.
-pub(super) fn coefficient_sign(p: &IPoly) -> Option<bool> {
-    let c = p.coeffs();
-    if c.iter().all(|x| x.lo() > 0.0) {
-        Some(true)
-    } else if c.iter().all(|x| x.hi() < 0.0) {
-        Some(false)
-    } else {
-        None
-    }
 }
 
 /// The four quarters of a 2-variable polynomial, in the order of [`IntervalImage::quarters`].
