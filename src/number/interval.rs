@@ -2,7 +2,7 @@
 //!
 //! Rust runs with round-to-nearest and offers no rounding-mode control, so each bound is
 //! rounded to nearest and then corrected with an error-free transformation: `TwoSum` for
-//! sums and `fma` (or Dekker's product) for products give the exact sign of the rounding error, and the bound is
+//! sums and `fma` for products give the exact sign of the rounding error, and the bound is
 //! moved one ulp outward only when the rounded result lies on the wrong side. The result is
 //! the directed-rounding result (`_rd`, `_ru`), so exact operations stay exact (a sum of
 //! dyadic numbers that fits gives a point interval and a decidable zero).
@@ -105,37 +105,6 @@ fn half_ru(x: f64) -> f64 {
     }
 }
 
-/// The exact rounding error `a·b − p` of `p = fl(a·b)` (`|p| ≥ PRODUCT_EXACT_ERROR_MIN`), or
-/// `None` where it is not computed exactly. With hardware FMA (compiled with the `fma` target
-/// feature) it is `fma(a, b, −p)`; without it, Dekker's product with Veltkamp's splitting,
-/// exact away from overflow and underflow (`proofs/outward-rounding.md`, item 3): a call to a
-/// software `fma` costs more than the whole interval product.
-#[inline]
-fn product_error(a: f64, b: f64, p: f64) -> Option<f64> {
-    #[cfg(target_feature = "fma")]
-    {
-        Some(a.mul_add(b, -p))
-    }
-    #[cfg(not(target_feature = "fma"))]
-    {
-        // 2^995 (the split's 2^27 + 1 times it stays finite) and 2^-860 (every partial
-        // product, down to |a_lo b_lo| ≥ 2^-108 |a b|, stays in the normal range).
-        const SPLIT_MAX: f64 = 6.696928794914171e299;
-        const DEKKER_MIN: f64 = 1.3824172084127856e-259;
-        if a.abs() > SPLIT_MAX || b.abs() > SPLIT_MAX || p.abs() < DEKKER_MIN {
-            return None;
-        }
-        let split = |x: f64| {
-            let c = 134_217_729.0 * x; // 2^27 + 1
-            let hi = c - (c - x);
-            (hi, x - hi)
-        };
-        let (ah, al) = split(a);
-        let (bh, bl) = split(b);
-        Some(((ah * bh - p) + ah * bl + al * bh) + al * bl)
-    }
-}
-
 /// `a * b` rounded down and up: `(rd, ru)`.
 #[inline]
 pub(crate) fn mul_rd_ru(a: f64, b: f64) -> (f64, f64) {
@@ -145,9 +114,7 @@ pub(crate) fn mul_rd_ru(a: f64, b: f64) -> (f64, f64) {
     }
     let p = a * b;
     if p.is_finite() && p.abs() >= PRODUCT_EXACT_ERROR_MIN {
-        let Some(e) = product_error(a, b, p) else {
-            return (p.next_down(), p.next_up());
-        };
+        let e = a.mul_add(b, -p);
         if e < 0.0 {
             (p.next_down(), p)
         } else if e > 0.0 {

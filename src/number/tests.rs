@@ -62,9 +62,9 @@ proptest! {
         prop_assert!(ia.neg().contains_rational(&Rational::from(-&a)));
     }
 
-    /// Interval products round each bound exactly in its direction (the error-free product:
-    /// `fma`, or Dekker's product without hardware FMA), where the product is in the range
-    /// where the error is computed exactly (`proofs/outward-rounding.md`, item 3).
+    /// Interval products round each bound exactly in its direction (the error-free product by
+    /// `fma`), where the product is in the range where the error is computed exactly
+    /// (`proofs/outward-rounding.md`, item 3).
     #[test]
     fn products_round_in_their_direction(a in -1e150f64..1e150, b in -1e150f64..1e150, sa in -300i32..300) {
         let a = a * 2f64.powi(sa);
@@ -124,6 +124,21 @@ proptest! {
             prop_assert!(r.lower_f64() <= exact && exact <= r.upper_f64());
         }
     }
+}
+
+/// Products near `f64::MAX` are enclosed (a review's counterexample to an error-free product
+/// without an upper bound on |a b|).
+#[test]
+fn products_near_the_largest_double_are_enclosed() {
+    let a = 2f64.powi(512) * (1.0 - 3.0 * f64::EPSILON / 2.0);
+    let b = 2f64.powi(512) * (1.0 + f64::EPSILON);
+    let (lo, hi) = super::interval::mul_rd_ru(a, b);
+    let exact = Rational::from_f64(a).unwrap() * Rational::from_f64(b).unwrap();
+    assert!(Rational::from_f64(lo).unwrap() <= exact, "{lo}");
+    assert!(
+        hi == f64::INFINITY || exact <= Rational::from_f64(hi).unwrap(),
+        "{hi}"
+    );
 }
 
 #[test]

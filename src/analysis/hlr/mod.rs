@@ -267,6 +267,8 @@ pub fn hidden_lines(
             events[a].push(Event::cut(v.param));
         }
         match (&sa.constraint, &sa.monotone) {
+            // A stretch the surface continues across cannot change its own QI.
+            (None, _) if !outline[a] => {}
             (None, _) => jobs.push(Job::SelfCrossing(a)),
             (Some(_), Some(_)) => {}
             (Some(_), None) => events[a].push(Event::unresolved(
@@ -442,9 +444,7 @@ pub fn hidden_lines(
         .collect();
     let mut assumptions = vec![ADJACENT_ASSUMPTION.to_string()];
     if let WeldTolerance::Absolute(d) = weld {
-        assumptions.push(format!(
-            "patch sides matched within {d} (--weld) are the same edge: their points are taken as one point of space"
-        ));
+        assumptions.push(weld_assumption(d));
     }
     Ok(HiddenLines {
         pieces,
@@ -452,6 +452,14 @@ pub fn hidden_lines(
         stats,
         assumptions,
     })
+}
+
+/// The assumption of a tolerance weld: sides matched within `d` are one edge, and a side whose
+/// control points lie within `d` of one point is that point (a pole).
+pub fn weld_assumption(d: f64) -> String {
+    format!(
+        "patch sides matched within {d} (--weld) are the same edge, and a side whose control points lie within {d} of one point is taken as that point (a pole): their points are taken as one point of space"
+    )
 }
 
 /// A system to solve.

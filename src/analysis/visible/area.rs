@@ -9,7 +9,7 @@
 
 use super::outline::quarters;
 use crate::bernstein::Bernstein;
-use crate::number::{Interval, Precision};
+use crate::number::{Interval, Number, Precision};
 use crate::surface::RationalPatch;
 
 type IPoly = Bernstein<Interval>;
@@ -37,17 +37,20 @@ fn density(n2: &IPoly, w: Option<&IPoly>) -> [f64; 2] {
     };
     let r = range(n2);
     // sqrt is correctly rounded: one step outward encloses.
-    let mut a = r.lo().max(0.0).sqrt().next_down().max(0.0);
-    let mut b = r.hi().max(0.0).sqrt().next_up();
-    if let Some(w) = w {
-        let wr = range(w);
-        if wr.lo() <= 0.0 {
-            return [0.0, f64::INFINITY];
+    let a = r.lo().max(0.0).sqrt().next_down().max(0.0);
+    let b = r.hi().max(0.0).sqrt().next_up();
+    let root = Interval::new(a, b);
+    let d = match w {
+        None => root,
+        Some(w) => {
+            let wr = range(w);
+            let Some(inv) = wr.mul(&wr).mul(&wr).recip().filter(|_| wr.lo() > 0.0) else {
+                return [0.0, f64::INFINITY];
+            };
+            root.mul(&inv)
         }
-        let cube = |x: f64| x * x * x;
-        a = (a / cube(wr.hi())).next_down() * (1.0 - 1e-12);
-        b = (b / cube(wr.lo())).next_up() * (1.0 + 1e-12);
-    }
+    };
+    let (a, b) = (d.lo(), d.hi());
     [a.max(0.0), b]
 }
 

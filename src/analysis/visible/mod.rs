@@ -248,9 +248,7 @@ pub fn visible_regions(
     }
     let mut assumptions = vec![ADJACENT_ASSUMPTION.to_string()];
     if let WeldTolerance::Absolute(d) = weld {
-        assumptions.push(format!(
-            "patch sides matched within {d} (--weld) are the same edge: their points are taken as one point of space"
-        ));
+        assumptions.push(super::hlr::weld_assumption(d));
     }
     Ok(VisibleRegions {
         patches,
