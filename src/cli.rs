@@ -428,14 +428,11 @@ where
             format,
             run,
         } => {
-            check_run_arguments(&run)?;
-            let view = parse_view(view)?;
-            if run.tol.is_some() {
-                return Err(CliError::input(
-                    "--tol: not supported by hlr yet (the visibility of each piece is proven; the drawn points are not)",
-                ));
-            }
-            refuse_overwrite(run.output.iter(), run.force)?;
+            let view = view_run(
+                view,
+                &run,
+                "--tol: not supported by hlr yet (the visibility of each piece is proven; the drawn points are not)",
+            )?;
             let Loaded {
                 name,
                 model: m,
@@ -481,19 +478,16 @@ where
             cells,
             run,
         } => {
-            check_run_arguments(&run)?;
-            let view = parse_view(view)?;
-            if run.tol.is_some() {
-                return Err(CliError::input(
-                    "--tol: not supported by visible (the cells are exact dyadic boxes; --cell-depth sets their size)",
-                ));
-            }
             if !(1..=14).contains(&cell_depth) {
                 return Err(CliError::input(format!(
                     "--cell-depth: expected 1..=14, found {cell_depth}"
                 )));
             }
-            refuse_overwrite(run.output.iter(), run.force)?;
+            let view = view_run(
+                view,
+                &run,
+                "--tol: not supported by visible (the cells are exact dyadic boxes; --cell-depth sets their size)",
+            )?;
             let Loaded {
                 name,
                 model: m,
@@ -750,6 +744,18 @@ fn refuse_overwrite<'a>(
 }
 
 /// Writes a command's text to the file asked for, or to standard output.
+/// The checks of a command that takes a view and does not take `--tol` (refused with
+/// `no_tol`): the run arguments, the view, and no overwrite without `--force`.
+fn view_run(view: ViewArgs, run: &RunArgs, no_tol: &str) -> Result<View, CliError> {
+    check_run_arguments(run)?;
+    let view = parse_view(view)?;
+    if run.tol.is_some() {
+        return Err(CliError::input(no_tol));
+    }
+    refuse_overwrite(run.output.iter(), run.force)?;
+    Ok(view)
+}
+
 /// A report as pretty JSON with a final newline (exit code 1 if it cannot be written).
 fn pretty_json(report: &impl serde::Serialize) -> Result<String, CliError> {
     serde_json::to_string_pretty(report)
