@@ -90,5 +90,42 @@ fn benches(c: &mut Criterion) {
     }
 }
 
-criterion_group!(visible_benches, benches);
+/// The IGES coil spring (1,062 patches) at cell depth 5, with and without clusters, one whole
+/// run each on 2 threads (`LIMN_BENCH_SPRING=1`; minutes).
+fn spring() {
+    if std::env::var_os("LIMN_BENCH_SPRING").is_none() {
+        return;
+    }
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/fixtures/iges/occt/bug22869_Spring.igs"
+    );
+    let spring = limn::io::read_model(std::path::Path::new(path)).unwrap();
+    let weld = limn::model::default_weld(&spring);
+    for clusters in [true, false] {
+        let opts = VisibleOptions {
+            max_depth: 5,
+            clusters,
+            ..VisibleOptions::default()
+        };
+        let t = std::time::Instant::now();
+        let r = pool(2)
+            .install(|| visible_regions(&spring, &view([2, 3, -2]), &opts, weld))
+            .unwrap();
+        println!(
+            "visible/spring-2,3,-2-depth-5-clusters-{clusters}-2-threads: {:.1} s, area share [{:.4}, {:.4}], {} cells",
+            t.elapsed().as_secs_f64(),
+            r.area_fraction[0],
+            r.area_fraction[1],
+            r.stats.cells
+        );
+    }
+}
+
+fn all(c: &mut Criterion) {
+    benches(c);
+    spring();
+}
+
+criterion_group!(visible_benches, all);
 criterion_main!(visible_benches);
