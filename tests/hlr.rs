@@ -84,6 +84,8 @@ fn two_spheres_from_many_directions() {
             .pieces
             .iter()
             .any(|p| p.kind == LineKind::Silhouette && p.certified));
+        // Disjoint spheres: no intersection reported.
+        assert!(h.intersecting_patches.is_empty());
     }
     assert!(total > 500, "{total}");
 }
@@ -117,6 +119,21 @@ fn a_sphere_in_front_of_a_torus() {
     assert!(checked > 100);
     // The sphere hides part of the torus: some torus piece has QI 2.
     assert!(h.pieces.iter().any(|p| p.patch < 16 && p.qi == Some(2)));
+    assert!(h.intersecting_patches.is_empty());
+}
+
+/// Two unit spheres whose centres are 1 apart intersect in a circle: the penetrations of one's
+/// lines through the other are found, and the pairs reported (one patch of each sphere).
+#[test]
+fn intersecting_spheres_are_reported() {
+    let mut patches = shapes::sphere(&q(1));
+    let n = patches.len();
+    patches.extend(shifted(shapes::sphere(&q(1)), [1, 0, 0]));
+    let h = run(patches, [1, 2, 3]);
+    assert!(!h.intersecting_patches.is_empty());
+    for [a, b] in &h.intersecting_patches {
+        assert!(*a < n && *b >= n, "{a}-{b}");
+    }
 }
 
 #[test]

@@ -165,6 +165,9 @@ pub struct HiddenLines {
     pub stats: HlrStats,
     /// What the result assumes without proof.
     pub assumptions: Vec<String>,
+    /// Pairs of patches proven to intersect: a line of the first passes through the second
+    /// (an isolated penetration root). Their intersection curve is not a line of the drawing.
+    pub intersecting_patches: Vec<[usize; 2]>,
 }
 
 /// The assumption of every drawing of a model with adjacent patches.
@@ -360,8 +363,14 @@ pub fn hidden_lines(
             (*job, r, exclude, false)
         })
         .collect();
+    let mut intersecting = std::collections::BTreeSet::new();
     for (job, r, exclude, timed_out) in &results {
         stats.boxes += r.boxes;
+        if let Job::Penetration(a, j) = *job {
+            for &(p, _, _) in segments[a].on.iter().filter(|_| !r.roots.is_empty()) {
+                intersecting.insert([p.min(j), p.max(j)]);
+            }
+        }
         stats.excluded_vertices += exclude.len();
         // Which variables are each segment's parameter, and what an unresolved box means.
         let (targets, why): (Vec<(usize, usize)>, String) = match *job {
@@ -451,6 +460,7 @@ pub fn hidden_lines(
         facing,
         stats,
         assumptions,
+        intersecting_patches: intersecting.into_iter().collect(),
     })
 }
 

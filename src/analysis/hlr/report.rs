@@ -39,6 +39,8 @@ pub struct HlrReport {
     pub stats: HlrStats,
     /// What the result assumes without proof.
     pub assumptions: Vec<String>,
+    /// Pairs of patches proven to intersect (their intersection curve is not drawn).
+    pub intersecting_patches: Vec<[usize; 2]>,
     /// Wall time in milliseconds.
     pub time_ms: f64,
     /// Worker threads.
@@ -74,6 +76,7 @@ impl HlrReport {
             facing: h.facing.clone(),
             stats: h.stats.clone(),
             assumptions: h.assumptions.clone(),
+            intersecting_patches: h.intersecting_patches.clone(),
             time_ms,
             threads,
         }
@@ -128,6 +131,17 @@ impl HlrReport {
         }
         if self.unresolved.len() > 10 {
             t += &format!("  ... and {} more\n", self.unresolved.len() - 10);
+        }
+        if !self.intersecting_patches.is_empty() {
+            let pairs: Vec<String> = self
+                .intersecting_patches
+                .iter()
+                .map(|[a, b]| format!("{a}-{b}"))
+                .collect();
+            t += &format!(
+                "intersecting patches (their intersection curves are not drawn): {}\n",
+                pairs.join(", ")
+            );
         }
         for a in &self.assumptions {
             t += &format!("assumed: {a}\n");
