@@ -982,92 +982,23 @@ fn on_square_boundary(id: &CrossingId) -> bool {
 
 /// Chains arcs into branches through shared crossings.
 pub(crate) fn chain(arcs: &[Arc]) -> Vec<Branch> {
-    let mut incident: BTreeMap<CrossingId, Vec<usize>> = BTreeMap::new();
-    for (i, a) in arcs.iter().enumerate() {
-        incident.entry(a.from).or_default().push(i);
-        incident.entry(a.to).or_default().push(i);
-    }
-    let on_boundary = |id: &CrossingId| -> bool {
-        let (u, v) = match *id {
-            CrossingId::Exact { u, v } => (Some(u), Some(v)),
-            CrossingId::Segment { fixed, c, .. } => {
-                if fixed == 0 {
-                    (Some(c), None)
-                } else {
-                    (None, Some(c))
-                }
-            }
-        };
-        [u, v]
-            .into_iter()
-            .flatten()
-            .any(|x| x == Dyadic::ZERO || x == Dyadic::ONE)
-    };
-    let mut used = vec![false; arcs.len()];
-    let mut branches = Vec::new();
-    // Open branches first, from ends of degree 1, in a fixed order.
-    let ends: Vec<CrossingId> = incident
+    let ids: Vec<CrossingId> = arcs
         .iter()
-        .filter(|(_, v)| v.len() == 1)
-        .map(|(k, _)| *k)
+        .flat_map(|a| [a.from, a.to])
+        .collect::<BTreeSet<_>>()
+        .into_iter()
         .collect();
-    for end in ends {
-        let first = incident[&end][0];
-        if used[first] {
-            continue;
-        }
-        let (crossings, last) = walk(arcs, &incident, &mut used, end, first);
-        let complete = on_boundary(&end) && on_boundary(&last) && incident[&last].len() == 1;
-        branches.push(Branch {
-            crossings,
-            closed: false,
-            complete,
-        });
-    }
-    for i in 0..arcs.len() {
-        if used[i] {
-            continue;
-        }
-        let start = arcs[i].from;
-        let (crossings, last) = walk(arcs, &incident, &mut used, start, i);
-        let closed = last == start;
-        let complete = closed && crossings.iter().all(|c| incident[c].len() == 2);
-        branches.push(Branch {
-            crossings,
-            closed,
-            complete,
-        });
-    }
-    branches
-}
-
-fn walk(
-    arcs: &[Arc],
-    incident: &BTreeMap<CrossingId, Vec<usize>>,
-    used: &mut [bool],
-    start: CrossingId,
-    first: usize,
-) -> (Vec<CrossingId>, CrossingId) {
-    let mut crossings = vec![start];
-    let mut at = start;
-    let mut arc = first;
-    loop {
-        used[arc] = true;
-        let a = &arcs[arc];
-        let next = if a.from == at { a.to } else { a.from };
-        if next == start {
-            return (crossings, next);
-        }
-        crossings.push(next);
-        at = next;
-        // Continue only through a crossing of degree exactly 2 (anything else ends the walk).
-        let inc = &incident[&at];
-        if inc.len() != 2 {
-            return (crossings, at);
-        }
-        match inc.iter().find(|&&j| !used[j]) {
-            Some(&j) => arc = j,
-            None => return (crossings, at),
-        }
-    }
+    let index = |c: &CrossingId| ids.binary_search(c).expect("every end is listed");
+    let edges: Vec<(usize, usize)> = arcs
+        .iter()
+        .map(|a| (index(&a.from), index(&a.to)))
+        .collect();
+    super::chain::chain(&edges, ids.len(), &|v| on_square_boundary(&ids[v]))
+        .into_iter()
+        .map(|c| Branch {
+            crossings: c.vertices.into_iter().map(|v| ids[v]).collect(),
+            closed: c.closed,
+            complete: c.complete,
+        })
+        .collect()
 }

@@ -2,8 +2,10 @@
 //! isolation; every analysis is built on these.
 
 pub mod certificate;
+pub(crate) mod chain;
 pub mod checker;
 pub mod curve2;
+pub mod curve_n;
 pub mod dyadic;
 pub mod lines;
 pub mod precision;

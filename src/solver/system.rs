@@ -85,7 +85,7 @@ fn range(p: &Bernstein<Interval>) -> Interval {
 /// The inverse of a small dense matrix (Gauss-Jordan with partial pivoting), or `None` if it
 /// is numerically singular. Any matrix serves as C in Krawczyk's operator: this only affects
 /// whether the test succeeds, never its soundness.
-fn inverse(m: &[Vec<f64>]) -> Option<Vec<Vec<f64>>> {
+pub(crate) fn inverse(m: &[Vec<f64>]) -> Option<Vec<Vec<f64>>> {
     let n = m.len();
     let mut a: Vec<Vec<f64>> = m
         .iter()

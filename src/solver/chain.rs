@@ -1,0 +1,112 @@
+//! Chaining the arcs of a curve into its connected pieces: a graph whose vertices are the
+//! crossings and whose edges are the arcs, walked through vertices of degree 2.
+
+/// A chain of vertices joined by edges.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub(crate) struct Chain {
+    /// The vertices in order (a closed chain does not repeat its first vertex).
+    pub vertices: Vec<usize>,
+    /// The last vertex joins the first.
+    pub closed: bool,
+    /// Closed with every vertex of degree 2, or open with both ends of degree 1 on the
+    /// boundary (`boundary`): nothing of the curve is missing at its ends.
+    pub complete: bool,
+}
+
+/// Chains the edges (vertex pairs, vertices `0..vertices`) through vertices of degree 2:
+/// open chains first, from the ends of degree 1 in increasing order, then the closed ones.
+pub(crate) fn chain(
+    edges: &[(usize, usize)],
+    vertices: usize,
+    boundary: &dyn Fn(usize) -> bool,
+) -> Vec<Chain> {
+    let mut incident: Vec<Vec<usize>> = vec![Vec::new(); vertices];
+    for (i, &(a, b)) in edges.iter().enumerate() {
+        incident[a].push(i);
+        incident[b].push(i);
+    }
+    let mut used = vec![false; edges.len()];
+    let mut chains = Vec::new();
+    for end in (0..vertices).filter(|&v| incident[v].len() == 1) {
+        let first = incident[end][0];
+        if used[first] {
+            continue;
+        }
+        let (vertices, last) = walk(edges, &incident, &mut used, end, first);
+        let complete = boundary(end) && boundary(last) && incident[last].len() == 1;
+        chains.push(Chain {
+            vertices,
+            closed: false,
+            complete,
+        });
+    }
+    for i in 0..edges.len() {
+        if used[i] {
+            continue;
+        }
+        let start = edges[i].0;
+        let (vertices, last) = walk(edges, &incident, &mut used, start, i);
+        let closed = last == start;
+        let complete = closed && vertices.iter().all(|&v| incident[v].len() == 2);
+        chains.push(Chain {
+            vertices,
+            closed,
+            complete,
+        });
+    }
+    chains
+}
+
+fn walk(
+    edges: &[(usize, usize)],
+    incident: &[Vec<usize>],
+    used: &mut [bool],
+    start: usize,
+    first: usize,
+) -> (Vec<usize>, usize) {
+    let mut vertices = vec![start];
+    let mut at = start;
+    let mut edge = first;
+    loop {
+        used[edge] = true;
+        let (a, b) = edges[edge];
+        let next = if a == at { b } else { a };
+        if next == start {
+            return (vertices, next);
+        }
+        vertices.push(next);
+        at = next;
+        // Continue only through a vertex of degree exactly 2 (anything else ends the walk).
+        let inc = &incident[at];
+        if inc.len() != 2 {
+            return (vertices, at);
+        }
+        match inc.iter().find(|&&j| !used[j]) {
+            Some(&j) => edge = j,
+            None => return (vertices, at),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_path_a_loop_and_a_dangling_end() {
+        // 0-1-2 with 0 and 2 on the boundary; 3-4-5-3 a triangle; 6-7 with 7 not on it.
+        let edges = [(0, 1), (1, 2), (3, 4), (4, 5), (5, 3), (6, 7)];
+        let boundary = |v: usize| v != 7;
+        let c = chain(&edges, 8, &boundary);
+        assert_eq!(c.len(), 3);
+        assert_eq!(
+            (c[0].vertices.clone(), c[0].closed, c[0].complete),
+            (vec![0, 1, 2], false, true)
+        );
+        assert_eq!((c[1].vertices.clone(), c[1].complete), (vec![6, 7], false));
+        assert_eq!(
+            (c[2].vertices.clone(), c[2].closed, c[2].complete),
+            (vec![3, 4, 5], true, true)
+        );
+    }
+}

@@ -1,0 +1,340 @@
+//! The n-variable curve solver (`solver::curve_n`, `proofs/space-curves.md`) against curves
+//! whose pieces are known: circles and lines in 3 and 4 variables, a curve with a node, and
+//! random systems against an independent reference on many slicing planes (completeness and
+//! soundness checked separately); plane curves against the 2-variable solver.
+
+use limn::bernstein::Bernstein;
+use limn::number::{Interval, Number, Precision, Rational};
+use limn::solver::curve_n::{solve_space_curve, SpaceCurve, SpaceCurveOptions};
+use limn::solver::system::{solve_system, SystemOptions};
+use limn::solver::{solve_curve, CurveOptions, Dyadic};
+
+type Poly = Bernstein<Rational>;
+
+fn q(a: i64, b: i64) -> Rational {
+    Rational::from((a, b))
+}
+
+/// The coordinate `x_k` as a polynomial in `n` variables.
+fn var(n: usize, k: usize) -> Poly {
+    let mut d = vec![0; n];
+    d[k] = 1;
+    Bernstein::new(&d, vec![q(0, 1), q(1, 1)]).unwrap()
+}
+
+fn konst(n: usize, c: Rational) -> Poly {
+    Bernstein::constant(n, c)
+}
+
+/// (x_a − c_a)² + (x_b − c_b)² − r².
+fn circle(n: usize, a: usize, b: usize, ca: Rational, cb: Rational, r: Rational) -> Poly {
+    let da = &var(n, a) - &konst(n, ca);
+    let db = &var(n, b) - &konst(n, cb);
+    &(&(&da * &da) + &(&db * &db)) - &konst(n, Rational::from(&r * &r))
+}
+
+/// Every crossing's enclosure holds a point where each equation's interval value holds 0.
+fn crossings_on_curve(eqs: &[Poly], c: &SpaceCurve) {
+    let f: Vec<Bernstein<Interval>> = eqs.iter().map(|p| p.convert(Precision::F64)).collect();
+    for x in &c.crossings {
+        let b: Vec<Interval> = x
+            .enclosure
+            .iter()
+            .map(|e| Interval::new(e[0], e[1]))
+            .collect();
+        for p in &f {
+            let v = p.eval(&b);
+            assert!(
+                v.lo() <= 0.0 && 0.0 <= v.hi(),
+                "crossing {x:?} is off the curve: {v:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn a_circle_in_a_plane_is_one_closed_loop() {
+    let n = 3;
+    let f1 = circle(n, 0, 1, q(1, 2), q(3, 7), q(2, 7));
+    let f2 = &var(n, 2) - &konst(n, q(1, 3));
+    let c = solve_space_curve(&[f1.clone(), f2.clone()], &SpaceCurveOptions::default());
+    assert!(c.is_certified(), "{:?}", c.unresolved);
+    assert_eq!(c.branches.len(), 1);
+    assert!(c.branches[0].closed);
+    crossings_on_curve(&[f1, f2], &c);
+    // Every point of the circle lies in the box of an arc.
+    for k in 0..200 {
+        let t = std::f64::consts::TAU * k as f64 / 200.0;
+        let p = [
+            0.5 + 2.0 / 7.0 * t.cos(),
+            3.0 / 7.0 + 2.0 / 7.0 * t.sin(),
+            1.0 / 3.0,
+        ];
+        assert!(
+            c.arcs.iter().any(|a| a
+                .cell
+                .iter()
+                .zip(p)
+                .all(|(b, x)| b[0] - 1e-12 <= x && x <= b[1] + 1e-12)),
+            "{p:?} is in no arc's box"
+        );
+    }
+}
+
+#[test]
+fn two_circles_are_two_loops_and_a_tilted_one_crosses_the_boundary() {
+    let n = 3;
+    // Two circles in z = 1/3 and z = 5/7 at once: F₂ = (z − 1/3)(z − 5/7).
+    let f1 = circle(n, 0, 1, q(1, 2), q(3, 7), q(2, 7));
+    let f2 = &(&var(n, 2) - &konst(n, q(1, 3))) * &(&var(n, 2) - &konst(n, q(5, 7)));
+    let c = solve_space_curve(&[f1, f2], &SpaceCurveOptions::default());
+    assert!(c.is_certified(), "{:?}", c.unresolved);
+    assert_eq!(c.branches.iter().filter(|b| b.closed).count(), 2);
+    assert_eq!(c.branches.len(), 2);
+    // A circle of radius 4/9 around (2/5, 3/7) leaves the square through x = 0 and y = 0,
+    // on the tilted plane z = x/3 + 1/11: open branches ending on the domain boundary, one
+    // per stretch inside the square.
+    let (cx, cy, r) = (0.4, 3.0 / 7.0, 4.0 / 9.0);
+    let f1 = circle(n, 0, 1, q(2, 5), q(3, 7), q(4, 9));
+    let f2 = &var(n, 2) - &(&(&var(n, 0) * &konst(n, q(1, 3))) + &konst(n, q(1, 11)));
+    let c = solve_space_curve(&[f1.clone(), f2.clone()], &SpaceCurveOptions::default());
+    assert!(c.is_certified(), "{:?}", c.unresolved);
+    crossings_on_curve(&[f1, f2], &c);
+    let inside = |t: f64| {
+        let (x, y) = (cx + r * t.cos(), cy + r * t.sin());
+        (0.0..=1.0).contains(&x) && (0.0..=1.0).contains(&y)
+    };
+    let m = 100_000;
+    let samples: Vec<bool> = (0..m)
+        .map(|k| inside(std::f64::consts::TAU * k as f64 / m as f64))
+        .collect();
+    let stretches = (0..m)
+        .filter(|&k| samples[k] && !samples[(k + m - 1) % m])
+        .count();
+    assert_eq!(stretches, 2);
+    assert_eq!(c.branches.len(), stretches, "{:#?}", c.branches);
+    assert!(c.branches.iter().all(|b| !b.closed && b.complete));
+}
+
+#[test]
+fn a_node_is_left_unresolved_around_it_and_nowhere_else() {
+    let n = 3;
+    // Two lines crossing at (2/5, 3/7) in the plane z = 1/3: (x − 2/5)² − (y − 3/7)²... as a
+    // product of two lines of slopes 1 and −2.
+    let (x, y) = (
+        &var(n, 0) - &konst(n, q(2, 5)),
+        &var(n, 1) - &konst(n, q(3, 7)),
+    );
+    let f1 = &(&x - &y) * &(&x + &(&y * &konst(n, q(1, 2))));
+    let f2 = &var(n, 2) - &konst(n, q(1, 3));
+    let c = solve_space_curve(&[f1, f2], &SpaceCurveOptions::default());
+    assert!(!c.unresolved.is_empty());
+    for u in &c.unresolved {
+        let p = [0.4, 3.0 / 7.0, 1.0 / 3.0];
+        let near = u
+            .cell
+            .iter()
+            .zip(p)
+            .all(|(b, x)| b[0] - 1e-3 <= x && x <= b[1] + 1e-3);
+        assert!(near, "unresolved away from the node: {u:?}");
+    }
+    // Four branches from the boundary into the node, none complete.
+    assert_eq!(c.branches.len(), 4, "{:#?}", c.branches);
+    assert!(c.branches.iter().all(|b| !b.complete));
+}
+
+#[test]
+fn a_circle_in_four_variables() {
+    let n = 4;
+    let f1 = circle(n, 0, 3, q(1, 2), q(3, 7), q(2, 7));
+    let f2 = &var(n, 2) - &konst(n, q(1, 3));
+    let f3 = &var(n, 1) - &(&(&var(n, 0) * &konst(n, q(1, 5))) + &konst(n, q(2, 9)));
+    let c = solve_space_curve(
+        &[f1.clone(), f2.clone(), f3.clone()],
+        &SpaceCurveOptions::default(),
+    );
+    assert!(c.is_certified(), "{:?}", c.unresolved);
+    assert_eq!(c.branches.len(), 1);
+    assert!(c.branches[0].closed);
+    crossings_on_curve(&[f1, f2, f3], &c);
+}
+
+#[test]
+fn arcs_are_within_the_tolerance_of_their_chords() {
+    let n = 3;
+    let (cx, cy, r) = (0.5, 3.0 / 7.0, 2.0 / 7.0);
+    let f1 = circle(n, 0, 1, q(1, 2), q(3, 7), q(2, 7));
+    let f2 = &var(n, 2) - &konst(n, q(1, 3));
+    for tol in [1e-3, 1e-6] {
+        let opts = SpaceCurveOptions {
+            tolerance: Some(vec![tol; 3]),
+            ..SpaceCurveOptions::default()
+        };
+        let c = solve_space_curve(&[f1.clone(), f2.clone()], &opts);
+        assert!(c.is_certified() && c.within_tolerance);
+        // The chord between two points of a circle of radius r at distance h apart lies within
+        // r − sqrt(r² − h²/4) of it: check the chords against the true circle.
+        let mut worst: f64 = 0.0;
+        for a in &c.arcs {
+            let (p, q) = (c.crossings[a.from].point(), c.crossings[a.to].point());
+            let h = ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2)).sqrt();
+            worst = worst.max(r - (r * r - h * h / 4.0).sqrt());
+            for e in [&p, &q] {
+                let d = ((e[0] - cx).powi(2) + (e[1] - cy).powi(2)).sqrt();
+                assert!((d - r).abs() < 1e-9);
+            }
+            let dev = a.deviation.as_ref().expect("a bound per arc");
+            assert!(dev.iter().all(|d| *d <= tol));
+        }
+        assert!(worst <= tol, "the sagitta {worst} exceeds {tol}");
+        eprintln!(
+            "tol {tol}: {} arcs, {} boxes, worst sagitta {worst:.3e}",
+            c.arcs.len(),
+            c.boxes
+        );
+    }
+}
+
+/// A polynomial in 3 variables of degree 2 in each, with coefficients from a seed.
+fn random_poly(seed: &mut u64) -> Poly {
+    let mut next = || {
+        *seed ^= *seed << 13;
+        *seed ^= *seed >> 7;
+        *seed ^= *seed << 17;
+        (*seed % 41) as i64 - 20
+    };
+    let coeffs: Vec<Rational> = (0..27).map(|_| q(next(), 7)).collect();
+    Bernstein::new(&[2, 2, 2], coeffs).unwrap()
+}
+
+/// The polynomial with x₀ fixed at c (exact).
+fn slice(p: &Poly, c: &Rational) -> Poly {
+    let d = p.degrees().to_vec();
+    let inner = (d[1] + 1) * (d[2] + 1);
+    let mut out = Vec::with_capacity(inner);
+    for k in 0..inner {
+        let mut fibre: Vec<Rational> = (0..=d[0])
+            .map(|i| p.coeffs()[i * inner + k].clone())
+            .collect();
+        for len in (1..=d[0]).rev() {
+            for i in 0..len {
+                let a = Rational::from(&fibre[i] * &(Rational::from(1) - c));
+                fibre[i] = a + Rational::from(&fibre[i + 1] * c);
+            }
+        }
+        out.push(fibre[0].clone());
+    }
+    Bernstein::new(&d[1..], out).unwrap()
+}
+
+#[test]
+fn random_systems_agree_with_slices() {
+    let opts = SpaceCurveOptions {
+        max_boxes: 20_000,
+        ..SpaceCurveOptions::default()
+    };
+    let inside = |cell: &[[f64; 2]], p: &[f64]| {
+        cell.iter()
+            .zip(p)
+            .all(|(b, x)| b[0] - 1e-12 <= *x && *x <= b[1] + 1e-12)
+    };
+    let (mut checked, mut certified) = (0, 0);
+    for system in 0..12u64 {
+        let mut seed = 0x9E37_79B9_7F4A_7C15 ^ (system + 1).wrapping_mul(0x2545_F491_4F6C_DD1D);
+        eprintln!("system {system}: seed {seed:#x}");
+        let eqs = [random_poly(&mut seed), random_poly(&mut seed)];
+        let c = solve_space_curve(&eqs, &opts);
+        certified += usize::from(c.is_certified());
+        for k in 1..29 {
+            let cut = q(k, 29);
+            let x0 = k as f64 / 29.0;
+            let plane: Vec<Poly> = eqs.iter().map(|p| slice(p, &cut)).collect();
+            let unit = vec![(Dyadic::ZERO, Dyadic::ONE); 2];
+            let reference = solve_system(&plane, &[], &unit, &SystemOptions::default());
+            if !reference.unresolved.is_empty() {
+                continue;
+            }
+            // Completeness: every point of the curve on the plane is in an arc's or an
+            // unresolved box.
+            for root in &reference.roots {
+                let p = [
+                    x0,
+                    0.5 * (root.enclosure[0][0] + root.enclosure[0][1]),
+                    0.5 * (root.enclosure[1][0] + root.enclosure[1][1]),
+                ];
+                let covered = c.arcs.iter().any(|a| inside(&a.cell, &p))
+                    || c.unresolved.iter().any(|u| inside(&u.cell, &p));
+                assert!(covered, "system {system}: {p:?} is missed");
+                checked += 1;
+            }
+            // Soundness and counts: in a box whose arcs are graphs over x₀ and that the plane
+            // cuts, the plane meets the curve once per arc whose x₀-span holds x₀.
+            for a in c
+                .arcs
+                .iter()
+                .filter(|a| a.monotone_in == 0 && a.cell[0][0] < x0 && x0 < a.cell[0][1])
+            {
+                let spans = c
+                    .arcs
+                    .iter()
+                    .filter(|b| b.cell == a.cell)
+                    .filter(|b| {
+                        let (f, t) = (
+                            &c.crossings[b.from].enclosure[0],
+                            &c.crossings[b.to].enclosure[0],
+                        );
+                        f[1].min(t[1]) < x0 && x0 < f[0].max(t[0])
+                    })
+                    .count();
+                let points = reference
+                    .roots
+                    .iter()
+                    .filter(|r| {
+                        let p = [
+                            x0,
+                            0.5 * (r.enclosure[0][0] + r.enclosure[0][1]),
+                            0.5 * (r.enclosure[1][0] + r.enclosure[1][1]),
+                        ];
+                        inside(&a.cell, &p)
+                    })
+                    .count();
+                assert_eq!(
+                    spans, points,
+                    "system {system}: plane x0 = {k}/29 in box {:?}",
+                    a.cell
+                );
+            }
+        }
+    }
+    eprintln!("{checked} reference points checked; {certified} of 12 systems certified");
+    assert!(checked > 50);
+}
+
+#[test]
+fn plane_curves_agree_with_the_two_variable_solver() {
+    let mut seed = 0x1234_5678_9ABC_DEF1u64;
+    let mut next = || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed % 41) as i64 - 20
+    };
+    let mut compared = 0;
+    for case in 0..10 {
+        let g = Bernstein::new(&[3, 3], (0..16).map(|_| q(next(), 9)).collect()).unwrap();
+        let two = solve_curve(&g, &CurveOptions::default());
+        let n = solve_space_curve(std::slice::from_ref(&g), &SpaceCurveOptions::default());
+        if !(two.is_certified() && n.is_certified()) {
+            continue;
+        }
+        let summary = |closed: Vec<bool>| (closed.iter().filter(|c| **c).count(), closed.len());
+        assert_eq!(
+            summary(two.branches.iter().map(|b| b.closed).collect()),
+            summary(n.branches.iter().map(|b| b.closed).collect()),
+            "case {case}"
+        );
+        compared += 1;
+    }
+    eprintln!("{compared} of 10 plane curves compared");
+    assert!(compared >= 5);
+}
