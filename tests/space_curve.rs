@@ -4,7 +4,7 @@
 //! soundness checked separately); plane curves against the 2-variable solver.
 
 use limn::bernstein::Bernstein;
-use limn::number::{Interval, Number, Precision, Rational};
+use limn::number::{Interval, Precision, Rational};
 use limn::solver::curve_n::{solve_space_curve, SpaceCurve, SpaceCurveOptions};
 use limn::solver::system::{solve_system, SystemOptions};
 use limn::solver::{solve_curve, CurveOptions, Dyadic};
