@@ -49,8 +49,8 @@ fn norm(v: &[Interval; 3]) -> f64 {
 pub struct PatchAccuracy {
     /// g, then ∂g/∂u, ∂g/∂v, then ∂²g/∂u², ∂²g/∂u∂v, ∂²g/∂v².
     g: Vec<Bernstein<Interval>>,
-    /// For X, Y, Z, W: f, f_u, f_v, f_uu, f_uv, f_vv.
-    h: Vec<[Bernstein<Interval>; 6]>,
+    /// Bounds on the patch's derivatives.
+    surface: SurfaceBounds,
     /// g in f64, for root estimates (certified afterwards).
     g_f64: Bernstein<f64>,
 }
@@ -73,12 +73,60 @@ fn d2(a: usize, b: usize) -> usize {
     }
 }
 
+/// Interval data of a patch's homogeneous coordinates and their first and second partials,
+/// for bounds on the derivatives of `S = P / W` over boxes.
+pub(crate) struct SurfaceBounds {
+    /// For X, Y, Z, W: f, f_u, f_v, f_uu, f_uv, f_vv.
+    h: Vec<[Bernstein<Interval>; 6]>,
+}
+
+impl SurfaceBounds {
+    /// Converts (once) the patch's exact polynomials.
+    pub(crate) fn new(patch: &RationalPatch) -> SurfaceBounds {
+        SurfaceBounds {
+            h: patch.homogeneous().iter().map(derivs).collect(),
+        }
+    }
+
+    /// Bounds over a box of |∂S/∂m| and of the norms of S_mm, S_mo, S_oo.
+    pub(crate) fn bounds(&self, lo: [f64; 2], hi: [f64; 2], m: usize) -> Option<[f64; 4]> {
+        let o = 1 - m;
+        let r = |k: usize, i: usize| PatchAccuracy::range(&self.h[k][i], lo, hi);
+        let w: [Interval; 6] = std::array::from_fn(|i| r(3, i));
+        if !w[0].sign().is_positive() {
+            return None;
+        }
+        let mut s_m = [Interval::point(0.0); 3];
+        let mut s_mm = s_m;
+        let mut s_mo = s_m;
+        let mut s_oo = s_m;
+        for k in 0..3 {
+            let p: [Interval; 6] = std::array::from_fn(|i| r(k, i));
+            let s = div(p[0], w[0])?;
+            let sx = |a: usize| -> Option<Interval> { div(p[d1(a)].sub(&s.mul(&w[d1(a)])), w[0]) };
+            let (sm, so) = (sx(m)?, sx(o)?);
+            let sxy = |a: usize, b: usize, sa: Interval, sb: Interval| -> Option<Interval> {
+                let num = p[d2(a, b)]
+                    .sub(&sa.mul(&w[d1(b)]))
+                    .sub(&sb.mul(&w[d1(a)]))
+                    .sub(&s.mul(&w[d2(a, b)]));
+                div(num, w[0])
+            };
+            s_m[k] = sm;
+            s_mm[k] = sxy(m, m, sm, sm)?;
+            s_mo[k] = sxy(m, o, sm, so)?;
+            s_oo[k] = sxy(o, o, so, so)?;
+        }
+        Some([norm(&s_m), norm(&s_mm), norm(&s_mo), norm(&s_oo)])
+    }
+}
+
 impl PatchAccuracy {
     /// Converts (once) the exact polynomials a patch's bounds are computed from.
     pub fn new(patch: &RationalPatch, g: &Bernstein<Rational>) -> PatchAccuracy {
         PatchAccuracy {
             g: derivs(g).to_vec(),
-            h: patch.homogeneous().iter().map(derivs).collect(),
+            surface: SurfaceBounds::new(patch),
             g_f64: g.convert(Precision::F64),
         }
     }
@@ -115,38 +163,6 @@ impl PatchAccuracy {
         }
         let (a, b) = q.range_f64();
         Interval::try_new(a, b).unwrap_or(Interval::new(f64::NEG_INFINITY, f64::INFINITY))
-    }
-
-    /// Bounds over a box of |∂S/∂m| and of the norms of S_mm, S_mo, S_oo.
-    fn surface_bounds(&self, lo: [f64; 2], hi: [f64; 2], m: usize) -> Option<[f64; 4]> {
-        let o = 1 - m;
-        let r = |k: usize, i: usize| PatchAccuracy::range(&self.h[k][i], lo, hi);
-        let w: [Interval; 6] = std::array::from_fn(|i| r(3, i));
-        if !w[0].sign().is_positive() {
-            return None;
-        }
-        let mut s_m = [Interval::point(0.0); 3];
-        let mut s_mm = s_m;
-        let mut s_mo = s_m;
-        let mut s_oo = s_m;
-        for k in 0..3 {
-            let p: [Interval; 6] = std::array::from_fn(|i| r(k, i));
-            let s = div(p[0], w[0])?;
-            let sx = |a: usize| -> Option<Interval> { div(p[d1(a)].sub(&s.mul(&w[d1(a)])), w[0]) };
-            let (sm, so) = (sx(m)?, sx(o)?);
-            let sxy = |a: usize, b: usize, sa: Interval, sb: Interval| -> Option<Interval> {
-                let num = p[d2(a, b)]
-                    .sub(&sa.mul(&w[d1(b)]))
-                    .sub(&sb.mul(&w[d1(a)]))
-                    .sub(&s.mul(&w[d2(a, b)]));
-                div(num, w[0])
-            };
-            s_m[k] = sm;
-            s_mm[k] = sxy(m, m, sm, sm)?;
-            s_mo[k] = sxy(m, o, sm, so)?;
-            s_oo[k] = sxy(o, o, so, so)?;
-        }
-        Some([norm(&s_m), norm(&s_mm), norm(&s_mo), norm(&s_oo)])
     }
 
     /// Bounds of |φ'| and |φ''| over a box where ∂g/∂m has a strict sign.
@@ -285,14 +301,14 @@ impl PatchAccuracy {
             self.phi_bounds(blo, bhi, m).map(|b| b.0)
         };
         let fail = |p0: [f64; 2], p1: [f64; 2]| (vec![p0, p1], None);
-        let (Some(phi1), Some(l_m)) = (phi1, self.surface_bounds(blo, bhi, m).map(|b| b[0])) else {
+        let (Some(phi1), Some(l_m)) = (phi1, self.surface.bounds(blo, bhi, m).map(|b| b[0])) else {
             return fail(p0, p1);
         };
         let end_delta = |b: [[f64; 2]; 2]| half(b, m) + phi1 * half(b, o);
         // The true arc ends anywhere in its crossing's location box, which may extend beyond
         // the end vertex's level: that end piece lies in the box grown by Φ₁ in m, within
         // L·(δ + half-extent in o) of the vertex in space, L bounding |∂S/∂m| and |∂S/∂o|.
-        let Some(l_o) = self.surface_bounds(blo, bhi, o).map(|b| b[0]) else {
+        let Some(l_o) = self.surface.bounds(blo, bhi, o).map(|b| b[0]) else {
             return fail(p0, p1);
         };
         let end_piece =
@@ -407,7 +423,7 @@ impl Tracer<'_> {
         // parent's bounds of S's derivatives are kept (they change little), Φ's are not.
         let sb = match parent_sb {
             Some(sb) => sb,
-            None => self.acc.surface_bounds(lo, hi, m)?,
+            None => self.acc.surface.bounds(lo, hi, m)?,
         };
         Some((p1.min(phi1), p2, sb))
     }

@@ -4,6 +4,7 @@ pub mod accuracy;
 pub mod baseline;
 pub mod facing;
 pub mod flecnodal;
+pub mod flecnodal_curves;
 pub mod fold_edges;
 pub mod hlr;
 pub mod model_curves;

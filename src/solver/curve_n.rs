@@ -18,7 +18,7 @@
 
 use super::curve2::TIME_LIMIT_REASON;
 use super::dyadic::Dyadic;
-use super::system::{inverse, solve_system, DyadicBoxN, SystemOptions};
+use super::system::{inverse, krawczyk, worth_testing, DyadicBoxN, SystemOptions};
 use crate::bernstein::Bernstein;
 use crate::number::{Interval, Number, Precision, Rational};
 use std::collections::HashMap;
@@ -36,6 +36,10 @@ pub struct SpaceCurveOptions {
     /// Per variable, the largest allowed distance between an arc and its chord in that
     /// coordinate (`f64::INFINITY` where it does not matter); `None`: topology only.
     pub tolerance: Option<Vec<f64>>,
+    /// Per variable, the largest allowed extent of an arc (the difference of its ends'
+    /// coordinates), so that a caller can bound what depends on the chords' lengths (the
+    /// bulge of a chord's image on a surface); `None`: no limit. Applied with `tolerance`.
+    pub max_chord: Option<Vec<f64>>,
     /// A wall-clock time after which no box is subdivided any more.
     pub deadline: Option<std::time::Instant>,
 }
@@ -46,11 +50,12 @@ impl Default for SpaceCurveOptions {
             max_depth: 16,
             max_boxes: 200_000,
             face: SystemOptions {
-                max_depth: 20,
-                max_boxes: 4_000,
-                refine_width: 1e-12,
+                max_depth: 5,
+                max_boxes: 64,
+                refine_width: 1e-8,
             },
             tolerance: None,
+            max_chord: None,
             deadline: None,
         }
     }
@@ -67,9 +72,32 @@ pub struct SpaceCrossing {
     pub enclosure: Vec<[f64; 2]>,
     /// On the boundary of the unit box (an end of the curve in the domain).
     pub on_boundary: bool,
+    /// The region of the face hyperplane (coordinates without `axis`) where the point is the
+    /// only zero of the face system: another solve of a system with the same zeros on that
+    /// hyperplane names the same point when its enclosure lies here.
+    pub unique_in: Vec<[f64; 2]>,
 }
 
 impl SpaceCrossing {
+    /// The enclosure without the coordinate `axis` (coordinates on the face hyperplane).
+    pub fn on_face(&self) -> Vec<[f64; 2]> {
+        self.enclosure
+            .iter()
+            .enumerate()
+            .filter(|&(k, _)| k != self.axis)
+            .map(|(_, e)| *e)
+            .collect()
+    }
+
+    /// Whether `other`, a crossing of a system with the same zeros on the same hyperplane, is
+    /// the same point (one's enclosure lies in the other's uniqueness region).
+    pub fn same_point(&self, other: &SpaceCrossing) -> bool {
+        self.axis == other.axis
+            && self.at == other.at
+            && (within(&self.on_face(), &other.unique_in)
+                || within(&other.on_face(), &self.unique_in))
+    }
+
     /// The centre of the enclosure.
     pub fn point(&self) -> Vec<f64> {
         self.enclosure.iter().map(|e| 0.5 * (e[0] + e[1])).collect()
@@ -191,40 +219,249 @@ fn integral(p: &Bernstein<Rational>) -> Bernstein<Rational> {
     p.scale(&Rational::from(l))
 }
 
-/// `p` with variable `axis` fixed at the dyadic `c = k / 2^e`, times `2^(e·d)` (d its degree in
-/// that variable): integer de Casteljau steps `x ← (2^e − k) x_i + k x_{i+1}` on every fibre,
-/// exact, a positive multiple of the restriction (the same zeros and signs).
-pub(crate) fn fix_variable(p: &Bernstein<Rational>, axis: usize, c: Dyadic) -> Bernstein<Rational> {
-    let q = c.to_rational();
-    let den = Rational::from(q.denom().clone());
-    let num = Rational::from(q.numer().clone());
-    let rest = Rational::from(&den - &num);
-    let n = p.nvars();
+/// The polynomial whose zeros on `[0, 1]ⁿ` are those of `p` moved by the Möbius map
+/// `u = λ t / (1 + (λ − 1) t)` in each variable (λ per variable, positive): the coefficient of
+/// index `(i₀, …)` is multiplied by `Π λ_k^{i_k}`. The map fixes 0 and 1 and is increasing, so
+/// the curve in `t` has the same topology, and its ends stay on the same sides. With λ ≠ 1 the
+/// dyadic grid of the subdivision in `t` falls on points of `u` that are not simple fractions,
+/// which curves with simple rational coefficients rarely pass through (a curve through an
+/// edge of the grid leaves its boxes unresolved: `proofs/space-curves.md`).
+pub fn warp(p: &Bernstein<Rational>, lambda: &[Rational]) -> Bernstein<Rational> {
+    let mut out = p.clone();
+    for flat in 0..p.coeffs().len() {
+        let idx = p.multi_index(flat);
+        let mut f = Rational::from(1);
+        for (k, l) in lambda.iter().enumerate() {
+            for _ in 0..idx[k] {
+                f *= l;
+            }
+        }
+        out.coeffs_mut()[flat] *= f;
+    }
+    out
+}
+
+/// The point `u` of the Möbius map of [`warp`] at `t` (f64, for drawing).
+pub fn unwarp(t: f64, lambda: f64) -> f64 {
+    lambda * t / (1.0 + (lambda - 1.0) * t)
+}
+
+/// An interval of `t` mapped to `u` by the map of [`warp`], rounded outward (the map is
+/// increasing).
+pub fn unwarp_interval(t: [f64; 2], lambda: f64) -> [f64; 2] {
+    let map = |x: f64| {
+        let l = Interval::point(lambda);
+        let x = Interval::point(x);
+        let den = Interval::point(1.0).add(&l.sub(&Interval::point(1.0)).mul(&x));
+        den.recip().map(|r| l.mul(&x).mul(&r))
+    };
+    match (map(t[0]), map(t[1])) {
+        (Some(a), Some(b)) => [a.lo().max(0.0), b.hi().min(1.0)],
+        _ => [0.0, 1.0],
+    }
+}
+
+/// A zero of a face system: an enclosure and a region where it is the only zero (face
+/// coordinates: local while the face is solved, then global on the hyperplane).
+struct FaceRoot {
+    enclosure: Vec<[f64; 2]>,
+    unique_in: Vec<[f64; 2]>,
+}
+
+/// The polynomial on its face `x_axis = 0` (`side` false) or `= 1`, in the remaining
+/// variables: exactly its Bernstein coefficients with that index at 0 or at the degree.
+fn face_slice(p: &Bernstein<Interval>, axis: usize, side: bool) -> Bernstein<Interval> {
     let d = p.degrees()[axis];
-    let stride = p.stride(axis);
-    let degrees: Vec<usize> = (0..n)
+    let want = if side { d } else { 0 };
+    let coeffs: Vec<Interval> = (0..p.coeffs().len())
+        .filter(|&k| p.multi_index(k)[axis] == want)
+        .map(|k| p.coeffs()[k])
+        .collect();
+    let degrees: Vec<usize> = (0..p.nvars())
         .filter(|&k| k != axis)
         .map(|k| p.degrees()[k])
         .collect();
-    let mut coeffs = Vec::with_capacity(p.coeffs().len() / (d + 1));
-    for flat in 0..p.coeffs().len() {
-        if p.multi_index(flat)[axis] != 0 {
+    if degrees.is_empty() {
+        return Bernstein::constant(1, coeffs[0]);
+    }
+    Bernstein::new(&degrees, coeffs).expect("the face keeps the other degrees")
+}
+
+/// Local unit-box coordinates `[lo, hi]` mapped into the box `[a, b]`, rounded outward.
+fn to_global(local: &[[f64; 2]], a: &[f64], b: &[f64]) -> Vec<[f64; 2]> {
+    local
+        .iter()
+        .enumerate()
+        .map(|(k, t)| {
+            let w = Interval::point(b[k]).sub(&Interval::point(a[k]));
+            let at = |x: f64| Interval::point(a[k]).add(&w.mul(&Interval::point(x)));
+            [at(t[0]).lo(), at(t[1]).hi()]
+        })
+        .collect()
+}
+
+/// Sub-box `[lo, hi]` (local) of the box a Krawczyk image `k` (in the sub-box's own unit
+/// coordinates) lies in, rounded outward.
+fn sub_to_local(k: &[Interval], lo: &[f64], hi: &[f64]) -> Vec<[f64; 2]> {
+    let unit: Vec<[f64; 2]> = k.iter().map(|x| [x.lo(), x.hi()]).collect();
+    to_global(&unit, lo, hi)
+}
+
+/// The zeros of a square system given on a face (local unit coordinates, the box's own
+/// interval polynomials): each with an enclosure and a region where it is the only zero, both
+/// local; `None` if some part of the face was not decided within the budget. Krawczyk's test
+/// is run first on each sub-box as it is (no restriction needed), then, for a zero on a
+/// sub-box side, on the sub-box grown by an eighth (restricted by extrapolation: the interval
+/// polynomials enclose the exact ones there too); a zero found twice is recognised by its
+/// enclosure lying in the other's uniqueness region (`proofs/krawczyk.md`).
+fn face_roots(face: Vec<Bernstein<Interval>>, opts: &SystemOptions) -> Option<Vec<FaceRoot>> {
+    let m = face.len();
+    let mut out: Vec<FaceRoot> = Vec::new();
+    let mut stack = vec![(vec![0.0; m], vec![1.0; m], 0u32, face)];
+    let mut boxes = 0usize;
+    while let Some((lo, hi, depth, polys)) = stack.pop() {
+        boxes += 1;
+        if polys.iter().any(excludes) {
             continue;
         }
-        let mut fibre: Vec<Rational> = (0..=d)
-            .map(|i| p.coeffs()[flat + i * stride].clone())
-            .collect();
-        for len in (1..=d).rev() {
-            for i in 0..len {
-                fibre[i] = Rational::from(&rest * &fibre[i]) + Rational::from(&num * &fibre[i + 1]);
+        if worth_testing(&polys) {
+            if let Some(k) = krawczyk(&polys) {
+                let unique: Vec<[f64; 2]> = lo.iter().zip(&hi).map(|(a, b)| [*a, *b]).collect();
+                let enc = refine_local(&polys, k, &lo, &hi, opts.refine_width);
+                out.push(FaceRoot {
+                    enclosure: enc,
+                    unique_in: unique,
+                });
+                continue;
+            }
+            let grown_lo: Vec<f64> = lo.iter().zip(&hi).map(|(a, b)| a - (b - a) / 8.0).collect();
+            let grown_hi: Vec<f64> = lo.iter().zip(&hi).map(|(a, b)| b + (b - a) / 8.0).collect();
+            let grown: Vec<Bernstein<Interval>> = polys
+                .iter()
+                .map(|p| {
+                    let lo = vec![Interval::point(-0.125); m];
+                    let hi = vec![Interval::point(1.125); m];
+                    p.restrict_box(&lo, &hi)
+                })
+                .collect();
+            if let Some(k) = krawczyk(&grown) {
+                let unique: Vec<[f64; 2]> = grown_lo
+                    .iter()
+                    .zip(&grown_hi)
+                    .map(|(a, b)| [*a, *b])
+                    .collect();
+                let enc = refine_local(&grown, k, &grown_lo, &grown_hi, opts.refine_width);
+                // A zero in the margin outside the face is not a crossing of this face.
+                if enc.iter().any(|e| e[1] < 0.0 || e[0] > 1.0) {
+                    continue;
+                }
+                let seen = out
+                    .iter()
+                    .any(|r| within(&enc, &r.unique_in) || within(&r.enclosure, &unique));
+                if !seen {
+                    out.push(FaceRoot {
+                        enclosure: enc,
+                        unique_in: unique,
+                    });
+                }
+                continue;
             }
         }
-        coeffs.push(fibre.swap_remove(0));
+        if depth >= opts.max_depth || boxes + stack.len() >= opts.max_boxes {
+            return None;
+        }
+        let mut children = vec![(lo, hi, polys)];
+        for axis in 0..m {
+            let mut next = Vec::with_capacity(children.len() * 2);
+            for (l, h, ps) in children {
+                let mid = 0.5 * (l[axis] + h[axis]);
+                let (mut lh, mut rl) = (h.clone(), l.clone());
+                lh[axis] = mid;
+                rl[axis] = mid;
+                let (pl, pr): (Vec<_>, Vec<_>) = ps.iter().map(|p| p.subdivide_half(axis)).unzip();
+                next.push((l, lh, pl));
+                next.push((rl, h, pr));
+            }
+            children = next;
+        }
+        for (l, h, ps) in children.into_iter().rev() {
+            stack.push((l, h, depth + 1, ps));
+        }
     }
-    if degrees.is_empty() {
-        return Bernstein::constant(1, coeffs.swap_remove(0));
+    Some(out)
+}
+
+/// Narrows a zero's Krawczyk image `k` (in the polynomials' own unit coordinates; the zero
+/// is the only one in that unit box): Newton's method in f64 from its centre, then Krawczyk's
+/// test on small boxes around the result inside the unit box, growing until one succeeds (a
+/// success proves a zero there, which is the same zero: the only one in the unit box). The result is in the face's
+/// local coordinates (the polynomials' box is `[lo, hi]` there); where nothing succeeds the
+/// image itself is kept, still proven.
+fn refine_local(
+    polys: &[Bernstein<Interval>],
+    k: Vec<Interval>,
+    lo: &[f64],
+    hi: &[f64],
+    width: f64,
+) -> Vec<[f64; 2]> {
+    let m = polys.len();
+    let image: Vec<[f64; 2]> = k.iter().map(|x| [x.lo(), x.hi()]).collect();
+    let fallback = to_global(&image, lo, hi);
+    if fallback.iter().all(|e| e[1] - e[0] <= width) {
+        return fallback;
     }
-    Bernstein::new(&degrees, coeffs).expect("the remaining degrees fit the coefficients")
+    let f: Vec<Bernstein<f64>> = polys
+        .iter()
+        .map(|p| p.map(|x| 0.5 * (x.lo() + x.hi())))
+        .collect();
+    let df: Vec<Vec<Bernstein<f64>>> = f
+        .iter()
+        .map(|p| (0..m).map(|j| p.deriv(j)).collect())
+        .collect();
+    let mut x: Vec<f64> = image.iter().map(|e| 0.5 * (e[0] + e[1])).collect();
+    for _ in 0..30 {
+        let fx: Vec<f64> = f.iter().map(|p| p.eval(&x)).collect();
+        let j: Vec<Vec<f64>> = df
+            .iter()
+            .map(|r| r.iter().map(|p| p.eval(&x)).collect())
+            .collect();
+        let Some(inv) = inverse(&j) else {
+            return fallback;
+        };
+        let step: Vec<f64> = (0..m)
+            .map(|i| (0..m).map(|l| inv[i][l] * fx[l]).sum())
+            .collect();
+        for (xi, si) in x.iter_mut().zip(&step) {
+            *xi -= si;
+        }
+        if !x.iter().all(|v| v.is_finite()) {
+            return fallback;
+        }
+        if step.iter().all(|s| s.abs() <= 1e-16) {
+            break;
+        }
+    }
+    let mut r = 1e-14;
+    while r < 0.25 {
+        // Inside the tested box (the polynomials' unit box), where the zero is unique.
+        let b: Vec<[f64; 2]> = x.iter().map(|&v| [v - r, v + r]).collect();
+        if !b.iter().all(|e| 0.0 <= e[0] && e[1] <= 1.0) {
+            break;
+        }
+        let a: Vec<Interval> = b.iter().map(|e| Interval::point(e[0])).collect();
+        let c: Vec<Interval> = b.iter().map(|e| Interval::point(e[1])).collect();
+        let sub: Vec<Bernstein<Interval>> = polys.iter().map(|p| p.restrict_box(&a, &c)).collect();
+        if let Some(kk) = krawczyk(&sub) {
+            let own = sub_to_local(
+                &kk,
+                &a.iter().map(|x| x.lo()).collect::<Vec<_>>(),
+                &c.iter().map(|x| x.lo()).collect::<Vec<_>>(),
+            );
+            return to_global(&own, lo, hi);
+        }
+        r *= 8.0;
+    }
+    fallback
 }
 
 /// The hull of a polynomial's coefficients: an enclosure of its range on its box.
@@ -236,6 +473,26 @@ fn range(p: &Bernstein<Interval>) -> Interval {
 fn excludes(p: &Bernstein<Interval>) -> bool {
     let c = p.coeffs();
     c.iter().all(|x| x.lo() > 0.0) || c.iter().all(|x| x.hi() < 0.0)
+}
+
+/// Whether the coefficients of `p` on its face `x_axis = 0` (`side` false) or `= 1` have one
+/// strict sign: they are the Bernstein coefficients of the restriction to that face.
+fn face_excludes(p: &Bernstein<Interval>, axis: usize, side: bool) -> bool {
+    let d = p.degrees()[axis];
+    let want = if side { d } else { 0 };
+    let mut on_face = (0..p.coeffs().len())
+        .filter(|&k| p.multi_index(k)[axis] == want)
+        .map(|k| p.coeffs()[k]);
+    let Some(first) = on_face.next() else {
+        return false;
+    };
+    if first.lo() > 0.0 {
+        on_face.all(|x| x.lo() > 0.0)
+    } else if first.hi() < 0.0 {
+        on_face.all(|x| x.hi() < 0.0)
+    } else {
+        false
+    }
 }
 
 fn magnitude(x: &Interval) -> f64 {
@@ -336,21 +593,11 @@ fn times_norm(c: &[Vec<f64>], v: &[Interval]) -> f64 {
 }
 
 struct Solver<'a> {
-    eqs: &'a [Bernstein<Rational>],
     n: usize,
     opts: &'a SpaceCurveOptions,
-    faces: HashMap<(usize, Dyadic), Vec<Bernstein<Rational>>>,
 }
 
 impl Solver<'_> {
-    /// The square system on the hyperplane `x_axis = at` (cached).
-    fn face_system(&mut self, axis: usize, at: Dyadic) -> &[Bernstein<Rational>] {
-        let eqs = self.eqs;
-        self.faces
-            .entry((axis, at))
-            .or_insert_with(|| eqs.iter().map(|p| fix_variable(p, axis, at)).collect())
-    }
-
     /// Decides one box from its polynomials (local coordinates).
     fn settle(&mut self, cell: &DyadicBoxN, polys: &[Bernstein<Interval>]) -> Settled {
         let n = self.n;
@@ -388,17 +635,28 @@ impl Solver<'_> {
         };
         let mut crossings = Vec::new();
         for axis in 0..n {
-            for at in [cell[axis].0, cell[axis].1] {
+            for (side, at) in [(false, cell[axis].0), (true, cell[axis].1)] {
+                // The box's own coefficients on the face are the face polynomials' (exactly
+                // the Bernstein coefficients with that index at 0 or at the degree): where
+                // one equation has a strict sign there, the face holds no crossing.
+                if polys.iter().any(|p| face_excludes(p, axis, side)) {
+                    continue;
+                }
                 let domain: DyadicBoxN = (0..n).filter(|&k| k != axis).map(|k| cell[k]).collect();
-                let opts = self.opts.face.clone();
-                let system = self.face_system(axis, at).to_vec();
-                let roots = solve_system(&system, &[], &domain, &opts);
-                if !roots.unresolved.is_empty() {
+                let face: Vec<Bernstein<Interval>> =
+                    polys.iter().map(|p| face_slice(p, axis, side)).collect();
+                let Some(roots) = face_roots(face, &self.opts.face) else {
                     return Settled::Open(
                         "a face crossing was not isolated (the curve touches a face of the box)",
                     );
-                }
-                for r in roots.roots {
+                };
+                let dlo: Vec<f64> = domain.iter().map(|d| d.0.to_f64()).collect();
+                let dhi: Vec<f64> = domain.iter().map(|d| d.1.to_f64()).collect();
+                let roots = roots.into_iter().map(|r| FaceRoot {
+                    enclosure: to_global(&r.enclosure, &dlo, &dhi),
+                    unique_in: to_global(&r.unique_in, &dlo, &dhi),
+                });
+                for r in roots {
                     let strictly_inside = r
                         .enclosure
                         .iter()
@@ -513,6 +771,13 @@ impl Solver<'_> {
                     })
                     .collect();
                 accurate &= dev.iter().zip(tol).all(|(d, t)| d <= t);
+                if let Some(chord) = &self.opts.max_chord {
+                    let extent = |k: usize| {
+                        let (a, b) = (&pair[0].enclosure[k], &pair[1].enclosure[k]);
+                        a[1].max(b[1]) - a[0].min(b[0])
+                    };
+                    accurate &= chord.iter().enumerate().all(|(k, c)| extent(k) <= *c);
+                }
                 Some(dev)
             })
             .collect();
@@ -555,18 +820,28 @@ fn within(inner: &[[f64; 2]], outer: &[[f64; 2]]) -> bool {
 /// assert_eq!(ends, vec![1, 1]);
 /// ```
 pub fn solve_space_curve(eqs: &[Bernstein<Rational>], opts: &SpaceCurveOptions) -> SpaceCurve {
+    solve_space_curve_where(eqs, &[], opts)
+}
+
+/// [`solve_space_curve`] restricted to where every polynomial of `nonpositive` is ≤ 0: a box
+/// on which one of them is strictly positive is excluded (for example the elliptic region,
+/// where no real asymptotic direction exists).
+///
+/// # Panics
+/// As [`solve_space_curve`], and if a filter has another number of variables.
+pub fn solve_space_curve_where(
+    eqs: &[Bernstein<Rational>],
+    nonpositive: &[Bernstein<Rational>],
+    opts: &SpaceCurveOptions,
+) -> SpaceCurve {
     let n = eqs.first().map_or(0, |p| p.nvars());
     assert!(
-        n >= 2 && eqs.len() == n - 1 && eqs.iter().all(|p| p.nvars() == n),
+        n >= 2 && eqs.len() == n - 1 && eqs.iter().chain(nonpositive).all(|p| p.nvars() == n),
         "n − 1 polynomials in n ≥ 2 variables"
     );
     let eqs: Vec<Bernstein<Rational>> = eqs.iter().map(integral).collect();
-    let mut solver = Solver {
-        eqs: &eqs,
-        n,
-        opts,
-        faces: HashMap::new(),
-    };
+    let filters: Vec<Bernstein<Rational>> = nonpositive.iter().map(integral).collect();
+    let mut solver = Solver { n, opts };
     let mut out = SpaceCurve {
         nvars: n,
         within_tolerance: true,
@@ -574,18 +849,25 @@ pub fn solve_space_curve(eqs: &[Bernstein<Rational>], opts: &SpaceCurveOptions) 
     };
     let mut raw: Vec<RawCrossing> = Vec::new();
     let mut arcs: Vec<RawArc> = Vec::new();
+    // Each box carries the equations, then the filters.
     let mut stack = vec![Item {
         cell: vec![(Dyadic::ZERO, Dyadic::ONE); n],
         depth: 0,
-        polys: eqs.iter().map(|p| p.convert(Precision::F64)).collect(),
+        polys: eqs
+            .iter()
+            .chain(&filters)
+            .map(|p| p.convert(Precision::F64))
+            .collect(),
         exact: false,
     }];
+    let positive = |p: &Bernstein<Interval>| p.coeffs().iter().all(|x| x.lo() > 0.0);
     while let Some(item) = stack.pop() {
         out.boxes += 1;
-        if item.polys.iter().any(excludes) {
+        let (equations, filter_polys) = item.polys.split_at(n - 1);
+        if equations.iter().any(excludes) || filter_polys.iter().any(positive) {
             continue;
         }
-        let (reason, accurate_enough) = match solver.settle(&item.cell, &item.polys) {
+        let (reason, accurate_enough) = match solver.settle(&item.cell, equations) {
             Settled::Arcs {
                 monotone_in,
                 crossings,
@@ -617,12 +899,13 @@ pub fn solve_space_curve(eqs: &[Bernstein<Rational>], opts: &SpaceCurveOptions) 
             Settled::Open(reason) => (reason, true),
         };
         // Undecided: recompute the polynomials exactly once if the enclosures have spread.
-        if accurate_enough && !item.exact && item.depth >= 3 && slack(&item.polys) > 1e-9 {
+        if accurate_enough && !item.exact && item.depth >= 3 && slack(equations) > 1e-9 {
             out.escalations += 1;
             let lo: Vec<Rational> = item.cell.iter().map(|d| d.0.to_rational()).collect();
             let hi: Vec<Rational> = item.cell.iter().map(|d| d.1.to_rational()).collect();
             let polys = eqs
                 .iter()
+                .chain(&filters)
                 .map(|p| p.restrict_box_rational(&lo, &hi).convert(Precision::F64))
                 .collect();
             out.boxes -= 1;
@@ -730,6 +1013,7 @@ fn assemble(out: &mut SpaceCurve, raw: Vec<RawCrossing>, arcs: Vec<RawArc>) {
                 at: c.at,
                 enclosure: c.enclosure.clone(),
                 on_boundary: c.on_boundary,
+                unique_in: c.unique_in.clone(),
             });
         }
     }

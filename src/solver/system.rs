@@ -189,7 +189,7 @@ fn preconditioned(square: &[Bernstein<Interval>]) -> Option<(Matrix, Vec<Vec<Int
 /// polynomials already on the box: every row of `|I − C J|` on the box sums to less than 1.
 /// It only decides whether to run the (costly) test; a box that fails it is subdivided, never
 /// decided by it.
-fn worth_testing(square: &[Bernstein<Interval>]) -> bool {
+pub(crate) fn worth_testing(square: &[Bernstein<Interval>]) -> bool {
     preconditioned(square).is_some_and(|(_, m)| {
         m.iter().all(|row| {
             row.iter()

@@ -137,6 +137,54 @@ pub fn transform(patch: &RationalPatch, rot: &[[Rational; 3]; 3], shift: &Point3
     })
 }
 
+/// The graph `z = f(x, y)` of a polynomial `f = Σ c x^i y^j` (terms `(i, j, c)`) over the
+/// rectangle `x ∈ [x0, x1]`, `y ∈ [y0, y1]`, as a polynomial patch with `u` along x and `v`
+/// along y (its degree is f's, at least 1 in each). Graphs have closed-form differential
+/// geometry (flecnodal points where `D²f(w, w) = D³f(w, w, w) = 0`), so they make exact
+/// test cases.
+///
+/// # Examples
+/// ```
+/// use limn::number::Rational;
+/// use limn::testing::shapes::graph;
+/// let q = |n: i64| Rational::from(n);
+/// // z = x y over [0, 1] × [0, 2].
+/// let p = graph(&[(1, 1, q(1))], [q(0), q(1)], [q(0), q(2)]);
+/// assert_eq!(p.eval(&q(1), &Rational::from((1, 2))), [q(1), q(1), q(1)]);
+/// ```
+pub fn graph(
+    terms: &[(usize, usize, Rational)],
+    x: [Rational; 2],
+    y: [Rational; 2],
+) -> RationalPatch {
+    use crate::bernstein::Bernstein;
+    let xs = Bernstein::new(&[1, 0], x.to_vec()).expect("degree (1, 0)");
+    let ys = Bernstein::new(&[0, 1], y.to_vec()).expect("degree (0, 1)");
+    let mut z = Bernstein::new(&[1, 1], vec![q(0); 4]).expect("degree (1, 1)");
+    for (i, j, c) in terms {
+        let mut t = Bernstein::constant(2, c.clone());
+        for _ in 0..*i {
+            t = &t * &xs;
+        }
+        for _ in 0..*j {
+            t = &t * &ys;
+        }
+        z = &z + &t;
+    }
+    let d = z.degrees().to_vec();
+    let (xs, ys) = (xs.elevate_to(&d), ys.elevate_to(&d));
+    let points = (0..z.coeffs().len())
+        .map(|k| {
+            [
+                xs.coeffs()[k].clone(),
+                ys.coeffs()[k].clone(),
+                z.coeffs()[k].clone(),
+            ]
+        })
+        .collect();
+    RationalPatch::polynomial([d[0], d[1]], points).expect("a graph is a valid patch")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

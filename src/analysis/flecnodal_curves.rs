@@ -1,0 +1,475 @@
+//! Flecnodal curves of a model: per patch, the curve `Ψ = Φ = 0` of the flecnodal system
+//! ([`super::flecnodal`]) in `(u, v, s)`, in both direction charts, solved by the n-variable
+//! curve solver ([`crate::solver::curve_n`]), the two charts joined where they share a
+//! direction (`d = (1, ±1)`), and mapped to the surface.
+//!
+//! The curve lies in the hyperbolic region by construction (`Ψ = 0` has a real direction only
+//! where the Gaussian curvature is ≤ 0), and every direction appears once up to sign, so no
+//! point is reported twice as `(a, b)` and `(−a, −b)`. A developable patch (Gaussian curvature
+//! identically zero: planes, cylinders, cones) is flecnodal everywhere along its rulings: it is
+//! reported as degenerate, not solved.
+
+use super::accuracy::SurfaceBounds;
+use super::flecnodal::{flecnodal_system, Chart};
+use super::parabolic::parabolic_function;
+use super::projection::lift;
+use crate::bernstein::Bernstein;
+use crate::model::Model;
+use crate::number::{Precision, Rational};
+use crate::solver::chain::chain;
+use crate::solver::curve_n::{
+    solve_space_curve_where, unwarp, unwarp_interval, warp, SpaceCrossing, SpaceCurve,
+    SpaceCurveOptions,
+};
+use crate::surface::RationalPatch;
+use rayon::prelude::*;
+
+type Poly = Bernstein<Rational>;
+
+/// What to compute.
+#[derive(Clone, Debug, Default)]
+pub struct FlecnodalOptions {
+    /// Budgets of the curve solver (its `tolerance` and `max_chord` are set from
+    /// `tolerance`).
+    pub solver: SpaceCurveOptions,
+    /// The largest allowed distance in space between the drawn polyline and the true curve,
+    /// in model units; `None`: topology only.
+    pub tolerance: Option<f64>,
+}
+
+impl FlecnodalOptions {
+    /// The defaults for a model: budgets that bound the time on a bad patch.
+    pub fn with_tolerance(tolerance: Option<f64>) -> FlecnodalOptions {
+        FlecnodalOptions {
+            solver: SpaceCurveOptions {
+                max_depth: 14,
+                max_boxes: 20_000,
+                ..SpaceCurveOptions::default()
+            },
+            tolerance,
+        }
+    }
+}
+
+/// A point of a flecnodal curve.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct FlecnodalPoint {
+    /// Its parameters (the centre of a proven enclosure).
+    pub uv: [f64; 2],
+    /// The asymptotic direction `(a, b)` in the parameter plane, of unit length (up to sign).
+    pub direction_uv: [f64; 2],
+    /// The point on the surface.
+    pub xyz: [f64; 3],
+    /// The unit tangent of the line with 4-point contact (up to sign): the view direction of
+    /// the visual event at this point.
+    pub line: [f64; 3],
+}
+
+/// A connected piece of a flecnodal curve on one patch.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct FlecnodalBranch {
+    /// The patch.
+    pub patch: usize,
+    /// Its points in order along the curve (the crossings of the solver's boxes).
+    pub points: Vec<FlecnodalPoint>,
+    /// A closed loop.
+    pub closed: bool,
+    /// Its ends lie on the patch's sides (or it is closed): nothing is missing at its ends.
+    pub complete: bool,
+}
+
+/// A region of `(u, v, s)` whose part of the curve was not decided.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct FlecnodalUnresolved {
+    /// The patch.
+    pub patch: usize,
+    /// The direction chart.
+    pub chart: Chart,
+    /// The box, `[lo, hi]` for u, v and s.
+    #[serde(rename = "box")]
+    pub cell: Vec<[f64; 2]>,
+    /// Why.
+    pub reason: String,
+}
+
+/// The flecnodal curves of one patch.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct PatchFlecnodal {
+    /// The patch.
+    pub patch: usize,
+    /// Why the patch was not solved (developable), if so.
+    pub degenerate: Option<String>,
+    /// The branches.
+    pub branches: Vec<FlecnodalBranch>,
+    /// What was not decided.
+    pub unresolved: Vec<FlecnodalUnresolved>,
+    /// Boxes examined, both charts.
+    pub boxes: usize,
+    /// Boxes recomputed exactly.
+    pub escalations: usize,
+    /// Sides of the square whose linear factor was divided out of the system (the system
+    /// vanishes identically there: a collapsed side).
+    pub divided_sides: Vec<&'static str>,
+    /// With a tolerance: the largest proven distance between a drawn segment and the curve
+    /// (`proofs/space-curves.md` §5, mapped to space), if a bound was found.
+    pub error_bound: Option<f64>,
+    /// With a tolerance: every drawn segment is proven within it.
+    pub within_tolerance: bool,
+}
+
+impl PatchFlecnodal {
+    /// Topology proven: nothing unresolved, every branch complete, not degenerate.
+    pub fn is_certified(&self) -> bool {
+        self.degenerate.is_none()
+            && self.unresolved.is_empty()
+            && self.branches.iter().all(|b| b.complete)
+    }
+}
+
+/// The flecnodal curves of a model.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct FlecnodalCurves {
+    /// Per patch.
+    pub patches: Vec<PatchFlecnodal>,
+}
+
+impl FlecnodalCurves {
+    /// Every patch certified.
+    pub fn is_certified(&self) -> bool {
+        self.patches.iter().all(PatchFlecnodal::is_certified)
+    }
+}
+
+/// The Möbius factors of [`warp`] for `(u, v, s)`: the solver's dyadic grid then falls on
+/// parameters that are not simple fractions (curves of symmetric patches pass through simple
+/// ones, such as `u = 1/2` with the direction `s = 1/2`).
+const WARP: [(i64, i64); 3] = [(33, 32), (29, 32), (37, 32)];
+
+fn warp_factors() -> [Rational; 3] {
+    WARP.map(|(a, b)| Rational::from((a, b)))
+}
+
+fn warp_f64(k: usize) -> f64 {
+    WARP[k].0 as f64 / WARP[k].1 as f64
+}
+
+const SIDES: [(usize, bool, &str); 4] = [
+    (0, false, "u=0"),
+    (0, true, "u=1"),
+    (1, false, "v=0"),
+    (1, true, "v=1"),
+];
+
+/// The system with the linear factors of the sides on which both polynomials vanish for
+/// every direction divided out (exactly, as often as they divide), and the sides divided.
+fn deflate(mut eqs: [Poly; 2]) -> ([Poly; 2], Vec<&'static str>) {
+    let mut divided = Vec::new();
+    for (axis, at_one, name) in SIDES {
+        let mut any = false;
+        for p in eqs.iter_mut() {
+            while let Some(q) = p.divide_face_factor(axis, at_one) {
+                *p = q;
+                any = true;
+            }
+        }
+        if any {
+            divided.push(name);
+        }
+    }
+    (eqs, divided)
+}
+
+/// f64 evaluation of a patch and its first partials.
+struct Evaluator {
+    /// X, Y, Z, W and their u and v derivatives.
+    h: Vec<[Bernstein<f64>; 3]>,
+}
+
+impl Evaluator {
+    fn new(patch: &RationalPatch) -> Evaluator {
+        Evaluator {
+            h: patch
+                .homogeneous()
+                .iter()
+                .map(|p| [p, &p.deriv(0), &p.deriv(1)].map(|q| q.convert(Precision::F64)))
+                .collect(),
+        }
+    }
+
+    /// S, S_u, S_v at (u, v).
+    fn eval(&self, u: f64, v: f64) -> [[f64; 3]; 3] {
+        let at: Vec<[f64; 3]> = self
+            .h
+            .iter()
+            .map(|d| [d[0].eval(&[u, v]), d[1].eval(&[u, v]), d[2].eval(&[u, v])])
+            .collect();
+        let w = at[3];
+        let mut out = [[0.0; 3]; 3];
+        for k in 0..3 {
+            let s = at[k][0] / w[0];
+            out[0][k] = s;
+            out[1][k] = (at[k][1] - s * w[1]) / w[0];
+            out[2][k] = (at[k][2] - s * w[2]) / w[0];
+        }
+        out
+    }
+
+    fn point(&self, chart: Chart, c: &SpaceCrossing) -> FlecnodalPoint {
+        let t = c.point();
+        let p: Vec<f64> = (0..3).map(|k| unwarp(t[k], warp_f64(k))).collect();
+        let sigma = 2.0 * p[2] - 1.0;
+        let (a, b) = match chart {
+            Chart::AlongU => (1.0, sigma),
+            Chart::AlongV => (sigma, 1.0),
+        };
+        let len = (a * a + b * b).sqrt();
+        let [s, su, sv] = self.eval(p[0], p[1]);
+        let t: [f64; 3] = std::array::from_fn(|k| a * su[k] + b * sv[k]);
+        let tl = (t[0] * t[0] + t[1] * t[1] + t[2] * t[2]).sqrt();
+        FlecnodalPoint {
+            uv: [p[0], p[1]],
+            direction_uv: [a / len, b / len],
+            xyz: s,
+            line: t.map(|x| x / tl),
+        }
+    }
+}
+
+/// The flecnodal curves of one patch (its index `index` is only recorded).
+///
+/// # Examples
+/// ```
+/// use limn::analysis::flecnodal_curves::{patch_flecnodal, FlecnodalOptions};
+/// use limn::testing::shapes;
+/// use limn::number::Rational;
+/// // A sphere has no hyperbolic points, so no flecnodal curve.
+/// let sphere = &shapes::sphere(&Rational::from(1))[0];
+/// let f = patch_flecnodal(sphere, 0, &FlecnodalOptions::default());
+/// assert!(f.is_certified() && f.branches.is_empty());
+/// ```
+pub fn patch_flecnodal(
+    patch: &RationalPatch,
+    index: usize,
+    options: &FlecnodalOptions,
+) -> PatchFlecnodal {
+    let mut out = PatchFlecnodal {
+        patch: index,
+        degenerate: None,
+        branches: Vec::new(),
+        unresolved: Vec::new(),
+        boxes: 0,
+        escalations: 0,
+        divided_sides: Vec::new(),
+        error_bound: None,
+        within_tolerance: options.tolerance.is_none(),
+    };
+    let k = parabolic_function(patch);
+    if k.is_zero() {
+        out.degenerate = Some(
+            "the Gaussian curvature vanishes identically (a developable patch: plane, cylinder, \
+             cone): every point is flecnodal along its ruling"
+                .to_string(),
+        );
+        return out;
+    }
+    let charts = [Chart::AlongU, Chart::AlongV];
+    let lambda = warp_factors();
+    let systems: Vec<([Poly; 2], Vec<&'static str>)> = charts
+        .iter()
+        .map(|&chart| {
+            let f = flecnodal_system(patch, chart);
+            let (eqs, divided) = deflate([f.asymptotic, f.contact]);
+            (eqs.map(|p| warp(&p, &lambda)), divided)
+        })
+        .collect();
+    // The hyperbolic filter: k (the parabolic function, with the factors of the sides where it
+    // vanishes identically divided out: positive multiples inside) is > 0 where the patch is
+    // elliptic, and there no direction is asymptotic.
+    let mut k = k;
+    for (axis, at_one, _) in SIDES {
+        while let Some(q) = k.divide_face_factor(axis, at_one) {
+            k = q;
+        }
+    }
+    let elliptic = [warp(&lift(&k, 3, 0), &lambda)];
+    out.divided_sides = systems[0].1.clone();
+    for (_, d) in &systems[1..] {
+        for s in d {
+            if !out.divided_sides.contains(s) {
+                out.divided_sides.push(s);
+            }
+        }
+    }
+    let accuracy = options.tolerance.and_then(|t| Accuracy::new(patch, t));
+    let mut opts = options.solver.clone();
+    if let Some(a) = &accuracy {
+        opts.tolerance = Some(a.solver_tolerance.to_vec());
+        opts.max_chord = Some(a.solver_chord.to_vec());
+    }
+    let opts = &opts;
+    let (cu, cv) = rayon::join(
+        || solve_space_curve_where(&systems[0].0, &elliptic, opts),
+        || solve_space_curve_where(&systems[1].0, &elliptic, opts),
+    );
+    let eval = Evaluator::new(patch);
+    for (chart, c) in charts.iter().zip([&cu, &cv]) {
+        out.boxes += c.boxes;
+        out.escalations += c.escalations;
+        out.unresolved.extend(c.unresolved.iter().map(|u| {
+            FlecnodalUnresolved {
+                patch: index,
+                chart: *chart,
+                cell: (0..3)
+                    .map(|k| unwarp_interval(u.cell[k], warp_f64(k)))
+                    .collect(),
+                reason: u.reason.clone(),
+            }
+        }));
+    }
+    if let (Some(a), Some(t)) = (&accuracy, options.tolerance) {
+        let bound = [&cu, &cv]
+            .iter()
+            .flat_map(|c| c.arcs.iter().map(move |arc| a.error(c, arc)))
+            .try_fold(0.0f64, |m, e| e.map(|e| m.max(e)));
+        out.error_bound = bound;
+        out.within_tolerance = bound.is_some_and(|b| b <= t);
+    }
+    out.branches = join_charts(&cu, &cv)
+        .into_iter()
+        .map(|(vertices, closed, complete)| FlecnodalBranch {
+            patch: index,
+            points: vertices
+                .into_iter()
+                .map(|(k, c)| eval.point(charts[k], c))
+                .collect(),
+            closed,
+            complete,
+        })
+        .collect();
+    out
+}
+
+/// Bounds of a patch's derivatives over its square, and the solver's targets that make every
+/// drawn segment lie within the tolerance of the curve in space.
+struct Accuracy {
+    /// |S_u|, |S_v|, |S_uu|, |S_uv|, |S_vv| over the patch.
+    l: [f64; 2],
+    s2: [f64; 3],
+    /// Per variable (u, v, s) in the solver's (warped) coordinates.
+    solver_tolerance: [f64; 3],
+    solver_chord: [f64; 3],
+}
+
+/// The largest derivative of the map of [`warp`] from t to u (λ or 1/λ), and a bound on the
+/// magnitude of its second derivative, `2λ|λ − 1| / min(1, λ)³`.
+fn warp_bounds(k: usize) -> (f64, f64) {
+    let l = warp_f64(k);
+    let first = l.max(1.0 / l);
+    let second = 2.0 * l * (l - 1.0).abs() / l.min(1.0).powi(3);
+    (first * (1.0 + 1e-12), second * (1.0 + 1e-12))
+}
+
+impl Accuracy {
+    fn new(patch: &RationalPatch, tol: f64) -> Option<Accuracy> {
+        let b = SurfaceBounds::new(patch);
+        let [lu, suu, suv, svv] = b.bounds([0.0, 0.0], [1.0, 1.0], 0)?;
+        let [lv, ..] = b.bounds([0.0, 0.0], [1.0, 1.0], 1)?;
+        let (du, ddu) = warp_bounds(0);
+        let (dv, ddv) = warp_bounds(1);
+        // Half the tolerance for the parameter deviation, half for the chords' bulge.
+        let dev = [
+            tol / (4.0 * du * lu.max(1e-300)),
+            tol / (4.0 * dv * lv.max(1e-300)),
+        ];
+        let bulge = ddu * lu + ddv * lv + suu + 2.0 * suv + svv;
+        let c = (4.0 * tol / bulge.max(1e-300)).sqrt();
+        Some(Accuracy {
+            l: [lu, lv],
+            s2: [suu, suv, svv],
+            solver_tolerance: [dev[0], dev[1], f64::INFINITY],
+            solver_chord: [c / du, c / dv, f64::INFINITY],
+        })
+    }
+
+    /// The bound on the distance in space between an arc's image and the segment between
+    /// its ends' images: `Σ L_k (Λ_k dev_k + h_k² |φ_k''| / 8) + (S_uu Δu² + 2 S_uv |Δu Δv| +
+    /// S_vv Δv²) / 8` with `Δ = Λ h` (`proofs/space-curves.md` §5).
+    fn error(&self, c: &SpaceCurve, arc: &crate::solver::curve_n::SpaceArc) -> Option<f64> {
+        let dev = arc.deviation.as_ref()?;
+        let (a, b) = (
+            &c.crossings[arc.from].enclosure,
+            &c.crossings[arc.to].enclosure,
+        );
+        let h = |k: usize| a[k][1].max(b[k][1]) - a[k][0].min(b[k][0]);
+        let mut e = 0.0;
+        let mut delta = [0.0; 2];
+        for k in 0..2 {
+            let (d1, d2) = warp_bounds(k);
+            e += self.l[k] * (d1 * dev[k] + h(k) * h(k) * d2 / 8.0);
+            delta[k] = d1 * h(k);
+        }
+        e += (self.s2[0] * delta[0] * delta[0]
+            + 2.0 * self.s2[1] * delta[0] * delta[1]
+            + self.s2[2] * delta[1] * delta[1])
+            / 8.0;
+        // A relative margin for the rounding of this sum.
+        Some(e * (1.0 + 1e-9))
+    }
+}
+
+/// Chains the arcs of both charts into branches, joining the charts at the directions they
+/// share: `s = 1` is `d = (1, 1)` in both, and `s = 0` is `(1, −1)` and `(−1, 1)`, the same
+/// direction up to sign (`Ψ` is even and `Φ` odd in `d`, so the two systems on those planes
+/// have the same zeros, and a crossing of one in the other's uniqueness region is the same
+/// point: `proofs/space-curves.md` §4).
+type Joined<'a> = Vec<(Vec<(usize, &'a SpaceCrossing)>, bool, bool)>;
+
+fn join_charts<'a>(cu: &'a SpaceCurve, cv: &'a SpaceCurve) -> Joined<'a> {
+    let offset = cu.crossings.len();
+    let all: Vec<(usize, &SpaceCrossing)> = cu
+        .crossings
+        .iter()
+        .map(|c| (0, c))
+        .chain(cv.crossings.iter().map(|c| (1, c)))
+        .collect();
+    // Vertex ids after merging the seam crossings.
+    let mut id: Vec<usize> = (0..all.len()).collect();
+    for (i, a) in cu.crossings.iter().enumerate() {
+        if a.axis != 2 {
+            continue;
+        }
+        if let Some(j) = cv.crossings.iter().position(|b| a.same_point(b)) {
+            id[offset + j] = i;
+        }
+    }
+    let mut edges: Vec<(usize, usize)> = cu.arcs.iter().map(|a| (id[a.from], id[a.to])).collect();
+    edges.extend(
+        cv.arcs
+            .iter()
+            .map(|a| (id[offset + a.from], id[offset + a.to])),
+    );
+    // A patch side ends a branch; an unmatched seam crossing or an unresolved box does not.
+    let side = |v: usize| {
+        let c = all[v].1;
+        c.on_boundary && c.axis != 2
+    };
+    chain(&edges, all.len(), &side)
+        .into_iter()
+        .map(|c| {
+            let vertices = c.vertices.into_iter().map(|v| all[v]).collect();
+            (vertices, c.closed, c.complete)
+        })
+        .collect()
+}
+
+/// The flecnodal curves of every patch of a model (in parallel over patches).
+pub fn flecnodal_curves(model: &Model, opts: &FlecnodalOptions) -> FlecnodalCurves {
+    FlecnodalCurves {
+        patches: model
+            .patches
+            .par_iter()
+            .enumerate()
+            .map(|(i, p)| patch_flecnodal(&p.surface, i, opts))
+            .collect(),
+    }
+}
