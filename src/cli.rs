@@ -2,6 +2,8 @@
 //! something can print JSON (`--format json`) whose field names are documented in README.
 
 use crate::analysis::baseline::{baseline_silhouette, BaselineMethod};
+use crate::analysis::flecnodal_curves::{flecnodal_curves, FlecnodalOptions};
+use crate::analysis::flecnodal_report::FlecnodalReport;
 use crate::analysis::hlr::{hidden_lines, HlrOptions, HlrReport};
 use crate::analysis::parabolic::parabolic;
 use crate::analysis::render::{hlr_svg, silhouette_obj, silhouette_svg, visible_svg};
@@ -10,6 +12,7 @@ use crate::analysis::silhouette_certificate::{check_silhouette, SilhouetteCertif
 use crate::analysis::visible::{visible_regions, VisibleOptions, VisibleReport};
 use crate::io::{read_model, read_model_bytes};
 use crate::model::{default_weld, Format, ModelInfo, WeldTolerance};
+use crate::solver::curve_n::SpaceCurveOptions;
 use crate::solver::CurveOptions;
 use clap::{Parser, Subcommand, ValueEnum};
 use std::io::Write;
@@ -76,7 +79,8 @@ enum Command {
         certificate: Option<PathBuf>,
     },
     /// Curves on a model that do not depend on a view, with certified topology (and accuracy
-    /// with --tol): `parabolic` (Gaussian curvature zero).
+    /// with --tol): `parabolic` (Gaussian curvature zero), `flecnodal` (an asymptotic tangent
+    /// line with 4-point contact).
     Curves {
         /// The model file.
         model: PathBuf,
@@ -209,6 +213,7 @@ enum Method {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 enum CurveKind {
     Parabolic,
+    Flecnodal,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -404,12 +409,30 @@ where
                 tol_abs,
             } = load(&model, &run)?;
             let start = std::time::Instant::now();
-            let (label, s) = match kind {
-                CurveKind::Parabolic => (
-                    "parabolic",
-                    pool.install(|| parabolic(&m, &opts, weld, tol_abs)),
-                ),
-            };
+            if kind == CurveKind::Flecnodal {
+                let fopts = FlecnodalOptions {
+                    solver: SpaceCurveOptions {
+                        deadline: opts.deadline,
+                        ..FlecnodalOptions::with_tolerance(tol_abs).solver
+                    },
+                    tolerance: tol_abs,
+                };
+                let r = pool.install(|| flecnodal_curves(&m, &fopts));
+                let ms = start.elapsed().as_secs_f64() * 1e3;
+                let report =
+                    FlecnodalReport::new(&name, &r, tol_abs, ms, pool.current_num_threads());
+                let text = match format {
+                    CurveFormat::Json => pretty_json(&report)?,
+                    CurveFormat::Text => report.text(),
+                    CurveFormat::Svg => report.svg(&m, &projection),
+                    CurveFormat::Obj => report.obj(),
+                };
+                return write_output(run.output, &text, out);
+            }
+            let (label, s) = (
+                "parabolic",
+                pool.install(|| parabolic(&m, &opts, weld, tol_abs)),
+            );
             let ms = start.elapsed().as_secs_f64() * 1e3;
             let report = SilhouetteReport::of_curves(
                 &name,

@@ -76,8 +76,9 @@ fn svg_output_and_no_overwrite() {
 #[test]
 fn bad_arguments_are_exit_2_with_one_line() {
     for args in [
-        &["curves", TEAPOT, "--kind", "flecnodal"][..],
+        &["curves", TEAPOT, "--kind", "bitangent"][..],
         &["curves", TEAPOT][..],
+        &["curves", TEAPOT, "--kind", "flecnodal", "--tol", "0"][..],
         &["curves", TEAPOT, "--kind", "parabolic", "--tol", "-1"][..],
         &["curves", TEAPOT, "--kind", "parabolic", "--dir", "0,0,0"][..],
         &["curves", TEAPOT, "--kind", "parabolic", "--threads", "0"][..],
@@ -176,4 +177,122 @@ fn parabolic_curves_of_every_patch_fixture() {
         let r: Value = serde_json::from_str(&out).unwrap_or_else(|e| panic!("{f}: {e}"));
         assert_eq!(r["kind"], "parabolic", "{f}");
     }
+}
+
+/// The graph z = xy + (x³ + y³)/6 over [0, 5/2] × [0, 3] as a JSON model (exact coordinates):
+/// its only flecnodal curve is the segment x + y = 2.
+fn cubic_graph_model() -> PathBuf {
+    let q = |n: i64, d: i64| limn::number::Rational::from((n, d));
+    let p = limn::testing::shapes::graph(
+        &[(1, 1, q(1, 1)), (3, 0, q(1, 6)), (0, 3, q(1, 6))],
+        [q(0, 1), q(5, 2)],
+        [q(0, 1), q(3, 1)],
+    );
+    let pts: Vec<String> = p
+        .points()
+        .iter()
+        .map(|c| format!("[\"{}\",\"{}\",\"{}\"]", c[0], c[1], c[2]))
+        .collect();
+    let [m, n] = p.degree();
+    let text = format!(
+        r#"{{"patches":[{{"kind":"bezier","degree":[{m},{n}],"points":[{}]}}]}}"#,
+        pts.join(",")
+    );
+    let path = tmp("cubic_graph.json");
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+#[test]
+fn flecnodal_json_contract_and_formats() {
+    let model = cubic_graph_model();
+    let m = model.to_str().unwrap();
+    let (code, out, err) = limn(&[
+        "curves",
+        m,
+        "--kind",
+        "flecnodal",
+        "--format",
+        "json",
+        "--tol",
+        "1e-3",
+    ]);
+    assert_eq!(code, Some(0), "{err}");
+    let r: Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(r["kind"], "flecnodal");
+    assert_eq!(r["certified"], true, "{out}");
+    assert!(r["error_bound"].as_f64().unwrap() <= r["tolerance"].as_f64().unwrap());
+    let curves = r["curves"].as_array().unwrap();
+    assert_eq!(curves.len(), 1);
+    let c = &curves[0];
+    assert_eq!(c["complete"], true);
+    let n = c["points"].as_array().unwrap().len();
+    for field in ["points_uv", "directions_uv", "lines"] {
+        assert_eq!(c[field].as_array().unwrap().len(), n, "{field}");
+    }
+    for p in c["points"].as_array().unwrap() {
+        let (x, y) = (p[0].as_f64().unwrap(), p[1].as_f64().unwrap());
+        assert!((x + y - 2.0).abs() < 1e-9);
+    }
+    assert!(r["unresolved"].as_array().unwrap().is_empty());
+    assert!(r["degenerate"].as_array().unwrap().is_empty());
+    assert_eq!(r["stats"]["curves"], 1);
+    // Text, SVG and OBJ.
+    let (code, out, _) = limn(&["curves", m, "--kind", "flecnodal"]);
+    assert_eq!(code, Some(0));
+    assert!(
+        out.contains("1 flecnodal curves") && out.contains("certified"),
+        "{out}"
+    );
+    let (code, out, _) = limn(&["curves", m, "--kind", "flecnodal", "--format", "svg"]);
+    assert_eq!(code, Some(0));
+    assert!(out.starts_with("<svg") || out.starts_with("<?xml"));
+    let (code, out, _) = limn(&["curves", m, "--kind", "flecnodal", "--format", "obj"]);
+    assert_eq!(code, Some(0));
+    assert!(out.lines().any(|l| l.starts_with("l ")));
+}
+
+#[test]
+fn flecnodal_with_a_time_limit_is_not_certified() {
+    let (code, out, err) = limn(&[
+        "curves",
+        TEAPOT,
+        "--kind",
+        "flecnodal",
+        "--time-limit",
+        "0",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(code, Some(0), "{err}");
+    let r: Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(r["certified"], false);
+    let unresolved = r["unresolved"].as_array().unwrap();
+    assert!(!unresolved.is_empty());
+    assert!(unresolved
+        .iter()
+        .all(|u| u["reason"].as_str().unwrap().contains("time limit")));
+}
+
+#[test]
+fn flecnodal_of_a_plane_is_degenerate() {
+    let path = tmp("plane.json");
+    std::fs::write(
+        &path,
+        r#"{"patches":[{"kind":"bezier","degree":[1,1],"points":[[0,0,0],[0,1,0],[1,0,0],[1,1,0]]}]}"#,
+    )
+    .unwrap();
+    let (code, out, err) = limn(&[
+        "curves",
+        path.to_str().unwrap(),
+        "--kind",
+        "flecnodal",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(code, Some(0), "{err}");
+    let r: Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(r["certified"], false);
+    assert_eq!(r["degenerate"].as_array().unwrap().len(), 1);
+    assert!(r["curves"].as_array().unwrap().is_empty());
 }

@@ -38,12 +38,19 @@ pub struct FlecnodalOptions {
 }
 
 impl FlecnodalOptions {
-    /// The defaults for a model: budgets that bound the time on a bad patch.
+    /// The defaults for a model: budgets that bound the time on a bad patch (per chart 5,000
+    /// boxes to depth 12 for the topology; with a tolerance 50,000 to depth 16, since the
+    /// chords must be short).
     pub fn with_tolerance(tolerance: Option<f64>) -> FlecnodalOptions {
+        let (max_depth, max_boxes) = if tolerance.is_some() {
+            (16, 50_000)
+        } else {
+            (12, 5_000)
+        };
         FlecnodalOptions {
             solver: SpaceCurveOptions {
-                max_depth: 14,
-                max_boxes: 20_000,
+                max_depth,
+                max_boxes,
                 ..SpaceCurveOptions::default()
             },
             tolerance,
@@ -88,6 +95,8 @@ pub struct FlecnodalUnresolved {
     /// The box, `[lo, hi]` for u, v and s.
     #[serde(rename = "box")]
     pub cell: Vec<[f64; 2]>,
+    /// The surface point at the centre of the box's `(u, v)` (for drawing).
+    pub at: [f64; 3],
     /// Why.
     pub reason: String,
 }
@@ -300,6 +309,7 @@ pub fn patch_flecnodal(
             }
         }
     }
+    let eval = Evaluator::new(patch);
     let accuracy = options.tolerance.and_then(|t| Accuracy::new(patch, t));
     let mut opts = options.solver.clone();
     if let Some(a) = &accuracy {
@@ -311,17 +321,19 @@ pub fn patch_flecnodal(
         || solve_space_curve_where(&systems[0].0, &elliptic, opts),
         || solve_space_curve_where(&systems[1].0, &elliptic, opts),
     );
-    let eval = Evaluator::new(patch);
     for (chart, c) in charts.iter().zip([&cu, &cv]) {
         out.boxes += c.boxes;
         out.escalations += c.escalations;
         out.unresolved.extend(c.unresolved.iter().map(|u| {
+            let cell: Vec<[f64; 2]> = (0..3)
+                .map(|k| unwarp_interval(u.cell[k], warp_f64(k)))
+                .collect();
+            let mid = |k: usize| 0.5 * (cell[k][0] + cell[k][1]);
             FlecnodalUnresolved {
                 patch: index,
                 chart: *chart,
-                cell: (0..3)
-                    .map(|k| unwarp_interval(u.cell[k], warp_f64(k)))
-                    .collect(),
+                at: eval.eval(mid(0), mid(1))[0],
+                cell,
                 reason: u.reason.clone(),
             }
         }));

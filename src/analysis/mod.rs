@@ -5,6 +5,7 @@ pub mod baseline;
 pub mod facing;
 pub mod flecnodal;
 pub mod flecnodal_curves;
+pub mod flecnodal_report;
 pub mod fold_edges;
 pub mod hlr;
 pub mod model_curves;

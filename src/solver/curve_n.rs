@@ -30,8 +30,8 @@ pub struct SpaceCurveOptions {
     pub max_depth: u32,
     /// The most boxes examined.
     pub max_boxes: usize,
-    /// Budgets of the square systems solved on box faces (their `refine_width` is the width
-    /// of the crossings' enclosures).
+    /// Budgets of the square systems solved on box faces (their `refine_width` is the target
+    /// width of the crossings' enclosures relative to the face's).
     pub face: SystemOptions,
     /// Per variable, the largest allowed distance between an arc and its chord in that
     /// coordinate (`f64::INFINITY` where it does not matter); `None`: topology only.
@@ -52,7 +52,7 @@ impl Default for SpaceCurveOptions {
             face: SystemOptions {
                 max_depth: 5,
                 max_boxes: 64,
-                refine_width: 1e-8,
+                refine_width: 1e-5,
             },
             tolerance: None,
             max_chord: None,
@@ -81,12 +81,7 @@ pub struct SpaceCrossing {
 impl SpaceCrossing {
     /// The enclosure without the coordinate `axis` (coordinates on the face hyperplane).
     pub fn on_face(&self) -> Vec<[f64; 2]> {
-        self.enclosure
-            .iter()
-            .enumerate()
-            .filter(|&(k, _)| k != self.axis)
-            .map(|(_, e)| *e)
-            .collect()
+        without(&self.enclosure, self.axis)
     }
 
     /// Whether `other`, a crossing of a system with the same zeros on the same hyperplane, is
@@ -263,6 +258,7 @@ pub fn unwarp_interval(t: [f64; 2], lambda: f64) -> [f64; 2] {
 
 /// A zero of a face system: an enclosure and a region where it is the only zero (face
 /// coordinates: local while the face is solved, then global on the hyperplane).
+#[derive(Clone)]
 struct FaceRoot {
     enclosure: Vec<[f64; 2]>,
     unique_in: Vec<[f64; 2]>,
@@ -334,37 +330,43 @@ fn face_roots(face: Vec<Bernstein<Interval>>, opts: &SystemOptions) -> Option<Ve
                 });
                 continue;
             }
-            let grown_lo: Vec<f64> = lo.iter().zip(&hi).map(|(a, b)| a - (b - a) / 8.0).collect();
-            let grown_hi: Vec<f64> = lo.iter().zip(&hi).map(|(a, b)| b + (b - a) / 8.0).collect();
-            let grown: Vec<Bernstein<Interval>> = polys
-                .iter()
-                .map(|p| {
-                    let lo = vec![Interval::point(-0.125); m];
-                    let hi = vec![Interval::point(1.125); m];
-                    p.restrict_box(&lo, &hi)
-                })
-                .collect();
-            if let Some(k) = krawczyk(&grown) {
-                let unique: Vec<[f64; 2]> = grown_lo
+            // A zero near the sub-box's sides: the test on the grown box (not on the whole
+            // face, which is subdivided first: the grown test costs a restriction).
+            if depth >= 1 {
+                let grown_lo: Vec<f64> =
+                    lo.iter().zip(&hi).map(|(a, b)| a - (b - a) / 8.0).collect();
+                let grown_hi: Vec<f64> =
+                    lo.iter().zip(&hi).map(|(a, b)| b + (b - a) / 8.0).collect();
+                let grown: Vec<Bernstein<Interval>> = polys
                     .iter()
-                    .zip(&grown_hi)
-                    .map(|(a, b)| [*a, *b])
+                    .map(|p| {
+                        let lo = vec![Interval::point(-0.125); m];
+                        let hi = vec![Interval::point(1.125); m];
+                        p.restrict_box(&lo, &hi)
+                    })
                     .collect();
-                let enc = refine_local(&grown, k, &grown_lo, &grown_hi, opts.refine_width);
-                // A zero in the margin outside the face is not a crossing of this face.
-                if enc.iter().any(|e| e[1] < 0.0 || e[0] > 1.0) {
+                if let Some(k) = krawczyk(&grown) {
+                    let unique: Vec<[f64; 2]> = grown_lo
+                        .iter()
+                        .zip(&grown_hi)
+                        .map(|(a, b)| [*a, *b])
+                        .collect();
+                    let enc = refine_local(&grown, k, &grown_lo, &grown_hi, opts.refine_width);
+                    // A zero in the margin outside the face is not a crossing of this face.
+                    if enc.iter().any(|e| e[1] < 0.0 || e[0] > 1.0) {
+                        continue;
+                    }
+                    let seen = out
+                        .iter()
+                        .any(|r| within(&enc, &r.unique_in) || within(&r.enclosure, &unique));
+                    if !seen {
+                        out.push(FaceRoot {
+                            enclosure: enc,
+                            unique_in: unique,
+                        });
+                    }
                     continue;
                 }
-                let seen = out
-                    .iter()
-                    .any(|r| within(&enc, &r.unique_in) || within(&r.enclosure, &unique));
-                if !seen {
-                    out.push(FaceRoot {
-                        enclosure: enc,
-                        unique_in: unique,
-                    });
-                }
-                continue;
             }
         }
         if depth >= opts.max_depth || boxes + stack.len() >= opts.max_boxes {
@@ -441,8 +443,16 @@ fn refine_local(
             break;
         }
     }
-    let mut r = 1e-14;
-    while r < 0.25 {
+    // The first box about the target width (in the face's units, mapped to the polynomials'),
+    // smaller ones only if needed.
+    let scale = (0..m)
+        .map(|k| hi[k] - lo[k])
+        .fold(0.0, f64::max)
+        .max(1e-300);
+    let mut r = (0.25 * width / scale).max(1e-14);
+    let mut tries = 0;
+    while r < 0.25 && tries < 12 {
+        tries += 1;
         // Inside the tested box (the polynomials' unit box), where the zero is unique.
         let b: Vec<[f64; 2]> = x.iter().map(|&v| [v - r, v + r]).collect();
         if !b.iter().all(|e| 0.0 <= e[0] && e[1] <= 1.0) {
@@ -473,26 +483,6 @@ fn range(p: &Bernstein<Interval>) -> Interval {
 fn excludes(p: &Bernstein<Interval>) -> bool {
     let c = p.coeffs();
     c.iter().all(|x| x.lo() > 0.0) || c.iter().all(|x| x.hi() < 0.0)
-}
-
-/// Whether the coefficients of `p` on its face `x_axis = 0` (`side` false) or `= 1` have one
-/// strict sign: they are the Bernstein coefficients of the restriction to that face.
-fn face_excludes(p: &Bernstein<Interval>, axis: usize, side: bool) -> bool {
-    let d = p.degrees()[axis];
-    let want = if side { d } else { 0 };
-    let mut on_face = (0..p.coeffs().len())
-        .filter(|&k| p.multi_index(k)[axis] == want)
-        .map(|k| p.coeffs()[k]);
-    let Some(first) = on_face.next() else {
-        return false;
-    };
-    if first.lo() > 0.0 {
-        on_face.all(|x| x.lo() > 0.0)
-    } else if first.hi() < 0.0 {
-        on_face.all(|x| x.hi() < 0.0)
-    } else {
-        false
-    }
 }
 
 fn magnitude(x: &Interval) -> f64 {
@@ -592,7 +582,12 @@ fn times_norm(c: &[Vec<f64>], v: &[Interval]) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// A face of a box: the fixed variable, its value, and the other sides.
+type FaceKey = (usize, Dyadic, DyadicBoxN);
+
 struct Solver<'a> {
+    /// The crossings found on each face solved so far (`None`: not decided).
+    faces: HashMap<FaceKey, Option<Vec<FaceRoot>>>,
     n: usize,
     opts: &'a SpaceCurveOptions,
 }
@@ -639,23 +634,38 @@ impl Solver<'_> {
                 // The box's own coefficients on the face are the face polynomials' (exactly
                 // the Bernstein coefficients with that index at 0 or at the degree): where
                 // one equation has a strict sign there, the face holds no crossing.
-                if polys.iter().any(|p| face_excludes(p, axis, side)) {
+                if polys.iter().any(|p| excludes(&face_slice(p, axis, side))) {
                     continue;
                 }
                 let domain: DyadicBoxN = (0..n).filter(|&k| k != axis).map(|k| cell[k]).collect();
-                let face: Vec<Bernstein<Interval>> =
-                    polys.iter().map(|p| face_slice(p, axis, side)).collect();
-                let Some(roots) = face_roots(face, &self.opts.face) else {
+                // A face shared with a neighbour of the same size is solved once: both boxes
+                // enclose the same exact system on it (`proofs/space-curves.md` §4).
+                let key = (axis, at, domain.clone());
+                let roots = match self.faces.get(&key) {
+                    Some(known) => known.clone(),
+                    None => {
+                        let face: Vec<Bernstein<Interval>> =
+                            polys.iter().map(|p| face_slice(p, axis, side)).collect();
+                        let dlo: Vec<f64> = domain.iter().map(|d| d.0.to_f64()).collect();
+                        let dhi: Vec<f64> = domain.iter().map(|d| d.1.to_f64()).collect();
+                        let found = face_roots(face, &self.opts.face).map(|roots| {
+                            roots
+                                .into_iter()
+                                .map(|r| FaceRoot {
+                                    enclosure: to_global(&r.enclosure, &dlo, &dhi),
+                                    unique_in: to_global(&r.unique_in, &dlo, &dhi),
+                                })
+                                .collect::<Vec<_>>()
+                        });
+                        self.faces.insert(key, found.clone());
+                        found
+                    }
+                };
+                let Some(roots) = roots else {
                     return Settled::Open(
                         "a face crossing was not isolated (the curve touches a face of the box)",
                     );
                 };
-                let dlo: Vec<f64> = domain.iter().map(|d| d.0.to_f64()).collect();
-                let dhi: Vec<f64> = domain.iter().map(|d| d.1.to_f64()).collect();
-                let roots = roots.into_iter().map(|r| FaceRoot {
-                    enclosure: to_global(&r.enclosure, &dlo, &dhi),
-                    unique_in: to_global(&r.unique_in, &dlo, &dhi),
-                });
                 for r in roots {
                     let strictly_inside = r
                         .enclosure
@@ -750,7 +760,6 @@ impl Solver<'_> {
             })
             .collect();
         let curvature = over_one_minus(times_norm(c, &r), beta);
-        let refine = self.opts.face.refine_width;
         let mut accurate = true;
         let devs = crossings
             .chunks_exact(2)
@@ -767,7 +776,10 @@ impl Solver<'_> {
                             .mul(&Interval::point(curvature))
                             .hi();
                         let global = Interval::point(local).mul(&Interval::point(width[k])).hi();
-                        global.min(width[k]) + refine
+                        // The chord joins the enclosures' centres: add their half-widths.
+                        let half = |c: &RawCrossing| 0.5 * (c.enclosure[k][1] - c.enclosure[k][0]);
+                        let slack = Interval::point(half(&pair[0]).max(half(&pair[1])));
+                        Interval::point(global.min(width[k])).add(&slack).hi()
                     })
                     .collect();
                 accurate &= dev.iter().zip(tol).all(|(d, t)| d <= t);
@@ -783,6 +795,15 @@ impl Solver<'_> {
             .collect();
         (devs, accurate)
     }
+}
+
+/// A box without one coordinate (its projection on a face hyperplane).
+fn without(b: &[[f64; 2]], axis: usize) -> Vec<[f64; 2]> {
+    b.iter()
+        .enumerate()
+        .filter(|&(k, _)| k != axis)
+        .map(|(_, e)| *e)
+        .collect()
 }
 
 fn f64_box(cell: &DyadicBoxN) -> Vec<[f64; 2]> {
@@ -841,7 +862,11 @@ pub fn solve_space_curve_where(
     );
     let eqs: Vec<Bernstein<Rational>> = eqs.iter().map(integral).collect();
     let filters: Vec<Bernstein<Rational>> = nonpositive.iter().map(integral).collect();
-    let mut solver = Solver { n, opts };
+    let mut solver = Solver {
+        faces: HashMap::new(),
+        n,
+        opts,
+    };
     let mut out = SpaceCurve {
         nvars: n,
         within_tolerance: true,
@@ -980,14 +1005,7 @@ fn assemble(out: &mut SpaceCurve, raw: Vec<RawCrossing>, arcs: Vec<RawArc>) {
             by_plane.entry((c.axis, c.at)).or_default().push(k);
         }
     }
-    let face = |c: &RawCrossing| -> Vec<[f64; 2]> {
-        c.enclosure
-            .iter()
-            .enumerate()
-            .filter(|&(k, _)| k != c.axis)
-            .map(|(_, e)| *e)
-            .collect()
-    };
+    let face = |c: &RawCrossing| without(&c.enclosure, c.axis);
     let mut planes: Vec<_> = by_plane.into_values().collect();
     planes.sort();
     for members in planes {

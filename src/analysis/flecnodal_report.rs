@@ -1,0 +1,260 @@
+//! The report of `limn curves --kind flecnodal`: JSON (field names are a public contract, see
+//! README), text, SVG (projected along a view direction) and OBJ polylines.
+
+use super::flecnodal_curves::{FlecnodalCurves, FlecnodalUnresolved};
+use super::render::{svg_document, Layer, Projection};
+use super::silhouette::View;
+use crate::model::Model;
+
+/// One flecnodal curve of the report.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct FlecnodalCurve {
+    /// The patch.
+    pub patch: usize,
+    /// A closed loop.
+    pub closed: bool,
+    /// Nothing missing at its ends (they lie on the patch's sides).
+    pub complete: bool,
+    /// Points in space, in order.
+    pub points: Vec<[f64; 3]>,
+    /// The same points as `(u, v)`.
+    pub points_uv: Vec<[f64; 2]>,
+    /// The asymptotic direction `(a, b)` in the parameter plane at each point (unit, up to
+    /// sign).
+    pub directions_uv: Vec<[f64; 2]>,
+    /// The unit direction in space of the line with 4-point contact at each point (up to
+    /// sign): the view direction of the visual event there.
+    pub lines: Vec<[f64; 3]>,
+}
+
+/// A patch not solved.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct DegeneratePatch {
+    /// The patch.
+    pub patch: usize,
+    /// Why.
+    pub reason: String,
+}
+
+/// Work counts.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct FlecnodalStats {
+    /// Patches.
+    pub patches: usize,
+    /// Curves.
+    pub curves: usize,
+    /// Points on them.
+    pub points: usize,
+    /// Boxes examined by the curve solver, both charts, all patches.
+    pub boxes: usize,
+    /// Boxes whose polynomials were recomputed exactly.
+    pub escalations: usize,
+    /// Unresolved boxes.
+    pub unresolved: usize,
+    /// Wall-clock milliseconds.
+    pub ms: f64,
+    /// Threads.
+    pub threads: usize,
+}
+
+/// The document of `limn curves --kind flecnodal`.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct FlecnodalReport {
+    /// The model file.
+    pub model: String,
+    /// "flecnodal".
+    pub kind: &'static str,
+    /// Topology proven on every patch (nothing unresolved or degenerate, every curve
+    /// complete), and with a tolerance every drawn segment proven within it.
+    pub certified: bool,
+    /// The tolerance in model units, if any.
+    pub tolerance: Option<f64>,
+    /// With a tolerance: the largest proven distance between a drawn segment and its curve.
+    pub error_bound: Option<f64>,
+    /// The curves.
+    pub curves: Vec<FlecnodalCurve>,
+    /// The boxes of `(u, v, s)` not decided.
+    pub unresolved: Vec<FlecnodalUnresolved>,
+    /// Patches not solved.
+    pub degenerate: Vec<DegeneratePatch>,
+    /// Work counts.
+    pub stats: FlecnodalStats,
+}
+
+impl FlecnodalReport {
+    /// The report of a run.
+    pub fn new(
+        model: &str,
+        r: &FlecnodalCurves,
+        tolerance: Option<f64>,
+        ms: f64,
+        threads: usize,
+    ) -> FlecnodalReport {
+        let curves: Vec<FlecnodalCurve> = r
+            .patches
+            .iter()
+            .flat_map(|p| &p.branches)
+            .map(|b| FlecnodalCurve {
+                patch: b.patch,
+                closed: b.closed,
+                complete: b.complete,
+                points: b.points.iter().map(|p| p.xyz).collect(),
+                points_uv: b.points.iter().map(|p| p.uv).collect(),
+                directions_uv: b.points.iter().map(|p| p.direction_uv).collect(),
+                lines: b.points.iter().map(|p| p.line).collect(),
+            })
+            .collect();
+        let unresolved: Vec<FlecnodalUnresolved> = r
+            .patches
+            .iter()
+            .flat_map(|p| p.unresolved.iter().cloned())
+            .collect();
+        let degenerate: Vec<DegeneratePatch> = r
+            .patches
+            .iter()
+            .filter_map(|p| {
+                p.degenerate.as_ref().map(|reason| DegeneratePatch {
+                    patch: p.patch,
+                    reason: reason.clone(),
+                })
+            })
+            .collect();
+        let error_bound = tolerance.and_then(|_| {
+            r.patches
+                .iter()
+                .filter(|p| p.degenerate.is_none())
+                .try_fold(0.0f64, |m, p| p.error_bound.map(|e| m.max(e)))
+        });
+        let within = r.patches.iter().all(|p| p.within_tolerance);
+        FlecnodalReport {
+            model: model.to_string(),
+            kind: "flecnodal",
+            certified: r.is_certified() && within,
+            tolerance,
+            error_bound,
+            stats: FlecnodalStats {
+                patches: r.patches.len(),
+                curves: curves.len(),
+                points: curves.iter().map(|c| c.points.len()).sum(),
+                boxes: r.patches.iter().map(|p| p.boxes).sum(),
+                escalations: r.patches.iter().map(|p| p.escalations).sum(),
+                unresolved: unresolved.len(),
+                ms,
+                threads,
+            },
+            curves,
+            unresolved,
+            degenerate,
+        }
+    }
+
+    /// A short human-readable summary.
+    pub fn text(&self) -> String {
+        let s = &self.stats;
+        let mut out = format!(
+            "{}: {} flecnodal curves ({} points) on {} patches, {}\n",
+            self.model,
+            s.curves,
+            s.points,
+            s.patches,
+            if self.certified {
+                "certified".to_string()
+            } else {
+                format!(
+                    "NOT fully certified: {} unresolved boxes, {} incomplete curves, {} degenerate patches{}",
+                    s.unresolved,
+                    self.curves.iter().filter(|c| !c.complete).count(),
+                    self.degenerate.len(),
+                    match (self.tolerance, self.error_bound) {
+                        (Some(t), Some(e)) if e > t => format!(", error bound {e:.3e} above the tolerance"),
+                        (Some(_), None) => ", no error bound".to_string(),
+                        _ => String::new(),
+                    }
+                )
+            }
+        );
+        if let (Some(t), Some(e)) = (self.tolerance, self.error_bound) {
+            out += &format!("tolerance {t:.3e}, proven error bound {e:.3e}\n");
+        }
+        let mut reasons: std::collections::BTreeMap<(usize, &str), usize> = Default::default();
+        for u in &self.unresolved {
+            *reasons.entry((u.patch, u.reason.as_str())).or_default() += 1;
+        }
+        for ((patch, reason), n) in reasons {
+            out += &format!("  patch {patch}: {n} boxes unresolved: {reason}\n");
+        }
+        for d in &self.degenerate {
+            out += &format!("  patch {}: degenerate: {}\n", d.patch, d.reason);
+        }
+        out += &format!(
+            "{} boxes, {} escalations, {:.1} ms on {} threads\n",
+            s.boxes, s.escalations, s.ms, s.threads
+        );
+        out
+    }
+
+    /// The curves drawn in the view plane (the model's patch outlines are not drawn), the
+    /// centres of unresolved boxes marked in red.
+    pub fn svg(&self, model: &Model, view: &View) -> String {
+        let proj = Projection::new(view, model);
+        let layers = [Layer {
+            style: "fill=\"none\" stroke=\"#0a4\" stroke-width=\"1.5\"",
+            paths: self
+                .curves
+                .iter()
+                .map(|c| {
+                    let mut p: Vec<[f64; 2]> = c.points.iter().map(|x| proj.project(*x)).collect();
+                    if c.closed {
+                        if let Some(f) = p.first().copied() {
+                            p.push(f);
+                        }
+                    }
+                    p
+                })
+                .collect(),
+            filled: false,
+        }];
+        let marks: Vec<[f64; 2]> = self.unresolved.iter().map(|u| proj.project(u.at)).collect();
+        let title = format!(
+            "{}: {} flecnodal curves, {}",
+            self.model,
+            self.stats.curves,
+            if self.certified {
+                "certified".to_string()
+            } else {
+                format!("{} unresolved boxes (red)", self.stats.unresolved)
+            }
+        );
+        svg_document(&title, &layers, &marks)
+    }
+
+    /// The curves as OBJ polylines.
+    pub fn obj(&self) -> String {
+        let mut out = format!("# limn flecnodal curves: {}\n", self.model);
+        let mut next = 1usize;
+        for (k, c) in self.curves.iter().enumerate() {
+            out += &format!(
+                "# curve {k}: patch {}, {}, {}\n",
+                c.patch,
+                if c.closed { "closed" } else { "open" },
+                if c.complete { "complete" } else { "incomplete" }
+            );
+            for p in &c.points {
+                out += &format!("v {} {} {}\n", p[0], p[1], p[2]);
+            }
+            if c.points.len() > 1 {
+                let mut line = String::from("l");
+                for i in 0..c.points.len() {
+                    line += &format!(" {}", next + i);
+                }
+                if c.closed {
+                    line += &format!(" {next}");
+                }
+                out += &line;
+                out += "\n";
+            }
+            next += c.points.len();
+        }
+        out
+    }
+}
