@@ -2,8 +2,8 @@
 //! README), text, SVG (projected along a view direction) and OBJ polylines.
 
 use super::flecnodal_curves::{FlecnodalCurves, FlecnodalUnresolved};
-use super::render::{svg_document, Layer, Projection};
-use super::silhouette::View;
+use super::render::{outline_layer, svg_document, Layer, Projection};
+use super::silhouette::{DrawPatch, View};
 use crate::model::Model;
 
 /// One flecnodal curve of the report.
@@ -193,27 +193,39 @@ impl FlecnodalReport {
         out
     }
 
-    /// The curves drawn in the view plane (the model's patch outlines are not drawn), the
-    /// centres of unresolved boxes marked in red.
+    /// The curves drawn in the view plane over the patches' sides in grey: complete curves
+    /// green, incomplete ones red and dashed, the centres of unresolved boxes marked in red.
     pub fn svg(&self, model: &Model, view: &View) -> String {
         let proj = Projection::new(view, model);
-        let layers = [Layer {
-            style: "fill=\"none\" stroke=\"#0a4\" stroke-width=\"1.5\"",
-            paths: self
-                .curves
-                .iter()
-                .map(|c| {
-                    let mut p: Vec<[f64; 2]> = c.points.iter().map(|x| proj.project(*x)).collect();
-                    if c.closed {
-                        if let Some(f) = p.first().copied() {
-                            p.push(f);
-                        }
-                    }
-                    p
-                })
-                .collect(),
-            filled: false,
-        }];
+        let draw: Vec<DrawPatch> = model
+            .patches
+            .iter()
+            .map(|p| DrawPatch::new(&p.surface))
+            .collect();
+        let path = |c: &FlecnodalCurve| {
+            let mut p: Vec<[f64; 2]> = c.points.iter().map(|x| proj.project(*x)).collect();
+            if c.closed {
+                if let Some(f) = p.first().copied() {
+                    p.push(f);
+                }
+            }
+            p
+        };
+        let (complete, incomplete): (Vec<&FlecnodalCurve>, Vec<&FlecnodalCurve>) =
+            self.curves.iter().partition(|c| c.complete);
+        let layers = [
+            outline_layer(&draw, &proj),
+            Layer {
+                style: r##"stroke="#0a4" stroke-width="1.6""##,
+                paths: complete.into_iter().map(path).collect(),
+                filled: false,
+            },
+            Layer {
+                style: r##"stroke="#d00" stroke-width="1.6" stroke-dasharray="6,3""##,
+                paths: incomplete.into_iter().map(path).collect(),
+                filled: false,
+            },
+        ];
         let marks: Vec<[f64; 2]> = self.unresolved.iter().map(|u| proj.project(u.at)).collect();
         let title = format!(
             "{}: {} flecnodal curves, {}",

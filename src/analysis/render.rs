@@ -61,17 +61,10 @@ impl Projection {
     }
 }
 
-/// The silhouette over light patch outlines, as an SVG document. Curves whose topology is
-/// certified are black; others red and dashed; unresolved boxes are marked in red.
-pub fn silhouette_svg(model: &Model, view: &View, s: &Silhouette, title: &str) -> String {
-    let proj = Projection::new(view, model);
+/// The patches' sides in light grey, for context.
+pub(crate) fn outline_layer(draw: &[DrawPatch], proj: &Projection) -> Layer {
     let mut outlines: Vec<Vec<[f64; 2]>> = Vec::new();
-    let draw: Vec<DrawPatch> = model
-        .patches
-        .iter()
-        .map(|p| DrawPatch::new(&p.surface))
-        .collect();
-    for d in &draw {
+    for d in draw {
         for side in 0..4 {
             let pts: Vec<[f64; 2]> = (0..=16)
                 .map(|k| {
@@ -88,6 +81,22 @@ pub fn silhouette_svg(model: &Model, view: &View, s: &Silhouette, title: &str) -
             outlines.push(pts);
         }
     }
+    Layer {
+        style: r##"stroke="#c8c8c8" stroke-width="0.6""##,
+        paths: outlines,
+        filled: false,
+    }
+}
+
+/// The silhouette over light patch outlines, as an SVG document. Curves whose topology is
+/// certified are black; others red and dashed; unresolved boxes are marked in red.
+pub fn silhouette_svg(model: &Model, view: &View, s: &Silhouette, title: &str) -> String {
+    let proj = Projection::new(view, model);
+    let draw: Vec<DrawPatch> = model
+        .patches
+        .iter()
+        .map(|p| DrawPatch::new(&p.surface))
+        .collect();
     let curves: Vec<(bool, Vec<[f64; 2]>)> = s
         .curves
         .iter()
@@ -106,11 +115,7 @@ pub fn silhouette_svg(model: &Model, view: &View, s: &Silhouette, title: &str) -
             proj.project(draw[*p].eval(0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])))
         })
         .collect();
-    let mut layers = vec![Layer {
-        style: r##"stroke="#c8c8c8" stroke-width="0.6""##,
-        paths: outlines,
-        filled: false,
-    }];
+    let mut layers = vec![outline_layer(&draw, &proj)];
     let (good, bad): (Vec<_>, Vec<_>) = curves.into_iter().partition(|c| c.0);
     layers.push(Layer {
         style: r##"stroke="#000" stroke-width="1.8""##,
