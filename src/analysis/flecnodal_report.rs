@@ -2,8 +2,8 @@
 //! README), text, SVG (projected along a view direction) and OBJ polylines.
 
 use super::flecnodal_curves::{FlecnodalCurves, FlecnodalUnresolved};
-use super::render::{outline_layer, svg_document, Layer, Projection};
-use super::silhouette::{DrawPatch, View};
+use super::render::{draw_patches, outline_layer, svg_document, Layer, Projection};
+use super::silhouette::View;
 use crate::model::Model;
 
 /// One flecnodal curve of the report.
@@ -197,11 +197,7 @@ impl FlecnodalReport {
     /// green, incomplete ones red and dashed, the centres of unresolved boxes marked in red.
     pub fn svg(&self, model: &Model, view: &View) -> String {
         let proj = Projection::new(view, model);
-        let draw: Vec<DrawPatch> = model
-            .patches
-            .iter()
-            .map(|p| DrawPatch::new(&p.surface))
-            .collect();
+        let draw = draw_patches(model);
         let path = |c: &FlecnodalCurve| {
             let mut p: Vec<[f64; 2]> = c.points.iter().map(|x| proj.project(*x)).collect();
             if c.closed {

@@ -61,6 +61,15 @@ impl Projection {
     }
 }
 
+/// The patches of a model, ready for f64 evaluation.
+pub(crate) fn draw_patches(model: &Model) -> Vec<DrawPatch> {
+    model
+        .patches
+        .iter()
+        .map(|p| DrawPatch::new(&p.surface))
+        .collect()
+}
+
 /// The patches' sides in light grey, for context.
 pub(crate) fn outline_layer(draw: &[DrawPatch], proj: &Projection) -> Layer {
     let mut outlines: Vec<Vec<[f64; 2]>> = Vec::new();
@@ -92,11 +101,7 @@ pub(crate) fn outline_layer(draw: &[DrawPatch], proj: &Projection) -> Layer {
 /// certified are black; others red and dashed; unresolved boxes are marked in red.
 pub fn silhouette_svg(model: &Model, view: &View, s: &Silhouette, title: &str) -> String {
     let proj = Projection::new(view, model);
-    let draw: Vec<DrawPatch> = model
-        .patches
-        .iter()
-        .map(|p| DrawPatch::new(&p.surface))
-        .collect();
+    let draw = draw_patches(model);
     let curves: Vec<(bool, Vec<[f64; 2]>)> = s
         .curves
         .iter()

@@ -18,7 +18,7 @@
 
 use super::curve2::TIME_LIMIT_REASON;
 use super::dyadic::Dyadic;
-use super::system::{inverse, krawczyk, worth_testing, DyadicBoxN, SystemOptions};
+use super::system::{inverse, krawczyk, newton, worth_testing, DyadicBoxN, SystemOptions};
 use crate::bernstein::Bernstein;
 use crate::number::{Interval, Number, Precision, Rational};
 use std::collections::HashMap;
@@ -416,33 +416,9 @@ fn refine_local(
         .iter()
         .map(|p| p.map(|x| 0.5 * (x.lo() + x.hi())))
         .collect();
-    let df: Vec<Vec<Bernstein<f64>>> = f
-        .iter()
-        .map(|p| (0..m).map(|j| p.deriv(j)).collect())
-        .collect();
-    let mut x: Vec<f64> = image.iter().map(|e| 0.5 * (e[0] + e[1])).collect();
-    for _ in 0..30 {
-        let fx: Vec<f64> = f.iter().map(|p| p.eval(&x)).collect();
-        let j: Vec<Vec<f64>> = df
-            .iter()
-            .map(|r| r.iter().map(|p| p.eval(&x)).collect())
-            .collect();
-        let Some(inv) = inverse(&j) else {
-            return fallback;
-        };
-        let step: Vec<f64> = (0..m)
-            .map(|i| (0..m).map(|l| inv[i][l] * fx[l]).sum())
-            .collect();
-        for (xi, si) in x.iter_mut().zip(&step) {
-            *xi -= si;
-        }
-        if !x.iter().all(|v| v.is_finite()) {
-            return fallback;
-        }
-        if step.iter().all(|s| s.abs() <= 1e-16) {
-            break;
-        }
-    }
+    let Some(x) = newton(&f, image.iter().map(|e| 0.5 * (e[0] + e[1])).collect(), 30) else {
+        return fallback;
+    };
     // The first box about the target width (in the face's units, mapped to the polynomials'),
     // smaller ones only if needed.
     let scale = (0..m)

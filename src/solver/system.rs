@@ -267,14 +267,35 @@ fn newton_then_verify(
     enc: &[[f64; 2]],
     width: f64,
 ) -> Option<Vec<[f64; 2]>> {
-    let n = exact.len();
     let f: Vec<Bernstein<f64>> = exact.iter().map(|p| p.convert(Precision::F64)).collect();
+    let x = newton(&f, enc.iter().map(|b| 0.5 * (b[0] + b[1])).collect(), 40)?;
+    let mut r = 1e-15;
+    while r <= width.max(1e-15) * 0.5 {
+        let b: Vec<[f64; 2]> = x
+            .iter()
+            .map(|&v| [v - r * v.abs().max(1.0), v + r * v.abs().max(1.0)])
+            .collect();
+        if within(&b, unique_in) {
+            let (lo, hi): (Vec<f64>, Vec<f64>) = b.iter().map(|x| (x[0], x[1])).unzip();
+            if let Some(k) = test_box_exact(exact, &lo, &hi) {
+                return Some(k);
+            }
+        }
+        r *= 8.0;
+    }
+    None
+}
+
+/// Newton's method in f64 for a square system from `x`, at most `iterations` steps (until a
+/// step is below the rounding of the point): an estimate, proven by nothing (callers verify
+/// it with Krawczyk's test). `None` where the Jacobian is singular or the iterate diverges.
+pub(crate) fn newton(f: &[Bernstein<f64>], mut x: Vec<f64>, iterations: usize) -> Option<Vec<f64>> {
+    let n = f.len();
     let df: Vec<Vec<Bernstein<f64>>> = f
         .iter()
         .map(|p| (0..n).map(|j| p.deriv(j)).collect())
         .collect();
-    let mut x: Vec<f64> = enc.iter().map(|b| 0.5 * (b[0] + b[1])).collect();
-    for _ in 0..40 {
+    for _ in 0..iterations {
         let fx: Vec<f64> = f.iter().map(|p| p.eval(&x)).collect();
         let j: Vec<Vec<f64>> = df
             .iter()
@@ -297,21 +318,7 @@ fn newton_then_verify(
             break;
         }
     }
-    let mut r = 1e-15;
-    while r <= width.max(1e-15) * 0.5 {
-        let b: Vec<[f64; 2]> = x
-            .iter()
-            .map(|&v| [v - r * v.abs().max(1.0), v + r * v.abs().max(1.0)])
-            .collect();
-        if within(&b, unique_in) {
-            let (lo, hi): (Vec<f64>, Vec<f64>) = b.iter().map(|x| (x[0], x[1])).unzip();
-            if let Some(k) = test_box_exact(exact, &lo, &hi) {
-                return Some(k);
-            }
-        }
-        r *= 8.0;
-    }
-    None
+    Some(x)
 }
 
 /// Krawczyk iteration, with bisection where it stalls.
