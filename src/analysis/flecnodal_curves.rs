@@ -116,8 +116,9 @@ pub struct PatchFlecnodal {
     pub boxes: usize,
     /// Boxes recomputed exactly.
     pub escalations: usize,
-    /// Sides of the square whose linear factor was divided out of the system (the system
-    /// vanishes identically there: a collapsed side).
+    /// Sides of the square whose linear factor was divided out of the system (both equations
+    /// vanish there for every direction, as on a collapsed side): the points of these sides
+    /// are not analysed.
     pub divided_sides: Vec<&'static str>,
     /// With a tolerance: the largest proven distance between a drawn segment and the curve
     /// (`proofs/space-curves.md` §5, mapped to space), if a bound was found.
@@ -174,14 +175,17 @@ const SIDES: [(usize, bool, &str); 4] = [
 fn deflate(mut eqs: [Poly; 2]) -> ([Poly; 2], Vec<&'static str>) {
     let mut divided = Vec::new();
     for (axis, at_one, name) in SIDES {
-        let mut any = false;
-        for p in eqs.iter_mut() {
-            while let Some(q) = p.divide_face_factor(axis, at_one) {
-                *p = q;
-                any = true;
+        // Only where both vanish on the whole face (every direction at every point of the
+        // side, as on a collapsed side): there the side's points are not analysed.
+        if eqs
+            .iter()
+            .all(|p| p.divide_face_factor(axis, at_one).is_some())
+        {
+            for p in eqs.iter_mut() {
+                while let Some(q) = p.divide_face_factor(axis, at_one) {
+                    *p = q;
+                }
             }
-        }
-        if any {
             divided.push(name);
         }
     }
@@ -294,13 +298,6 @@ pub fn patch_flecnodal(
     // The hyperbolic filter: k (the parabolic function, with the factors of the sides where it
     // vanishes identically divided out: positive multiples inside) is > 0 where the patch is
     // elliptic, and there no direction is asymptotic.
-    let mut k = k;
-    for (axis, at_one, _) in SIDES {
-        while let Some(q) = k.divide_face_factor(axis, at_one) {
-            k = q;
-        }
-    }
-    let elliptic = [warp(&lift(&k, 3, 0), &lambda)];
     out.divided_sides = systems[0].1.clone();
     for (_, d) in &systems[1..] {
         for s in d {
@@ -309,6 +306,17 @@ pub fn patch_flecnodal(
             }
         }
     }
+    // The same sides' factors out of k (a positive multiple inside the square); elsewhere k
+    // keeps its zeros on the sides (a parabolic side is not dropped by the filter).
+    let mut k = k;
+    for (axis, at_one, name) in SIDES {
+        if out.divided_sides.contains(&name) {
+            while let Some(q) = k.divide_face_factor(axis, at_one) {
+                k = q;
+            }
+        }
+    }
+    let elliptic = [warp(&lift(&k, 3, 0), &lambda)];
     let eval = Evaluator::new(patch);
     let accuracy = options.tolerance.and_then(|t| Accuracy::new(patch, t));
     let mut opts = options.solver.clone();

@@ -36,6 +36,16 @@ pub struct DegeneratePatch {
     pub reason: String,
 }
 
+/// A side of a patch whose points are not analysed: both equations vanish there for every
+/// direction (a collapsed side), so its factor was divided out.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct UnanalysedSide {
+    /// The patch.
+    pub patch: usize,
+    /// The side: `u=0`, `u=1`, `v=0` or `v=1`.
+    pub side: &'static str,
+}
+
 /// Work counts.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct FlecnodalStats {
@@ -77,6 +87,8 @@ pub struct FlecnodalReport {
     pub unresolved: Vec<FlecnodalUnresolved>,
     /// Patches not solved.
     pub degenerate: Vec<DegeneratePatch>,
+    /// Sides whose points are not analysed (collapsed sides).
+    pub unanalysed_sides: Vec<UnanalysedSide>,
     /// Work counts.
     pub stats: FlecnodalStats,
 }
@@ -119,6 +131,16 @@ impl FlecnodalReport {
                 })
             })
             .collect();
+        let unanalysed_sides = r
+            .patches
+            .iter()
+            .flat_map(|p| {
+                p.divided_sides.iter().map(|&side| UnanalysedSide {
+                    patch: p.patch,
+                    side,
+                })
+            })
+            .collect();
         let error_bound = tolerance.and_then(|_| {
             r.patches
                 .iter()
@@ -145,6 +167,7 @@ impl FlecnodalReport {
             curves,
             unresolved,
             degenerate,
+            unanalysed_sides,
         }
     }
 
@@ -185,6 +208,12 @@ impl FlecnodalReport {
         }
         for d in &self.degenerate {
             out += &format!("  patch {}: degenerate: {}\n", d.patch, d.reason);
+        }
+        for u in &self.unanalysed_sides {
+            out += &format!(
+                "  patch {}: side {} not analysed (the system vanishes there for every direction: a collapsed side)\n",
+                u.patch, u.side
+            );
         }
         out += &format!(
             "{} boxes, {} escalations, {:.1} ms on {} threads\n",
