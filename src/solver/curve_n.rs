@@ -9,7 +9,7 @@
 //! the curve at most once in the box. The box's pieces are then the arcs between its face
 //! crossings taken in order of `x_i`; the crossings are the roots of the square systems of
 //! `F` on the box faces, isolated by Krawczyk's test ([`super::system`]), and two boxes name
-//! one crossing when each one's enclosure lies in the other's uniqueness region. With a
+//! one crossing when the enclosure of one lies in the uniqueness region of the other. With a
 //! tolerance, a bound on the second derivative of the curve's graph (implicit differentiation
 //! in interval arithmetic) bounds the distance between each arc and its chord. The guarantees
 //! are in `proofs/space-curves.md`; what is not decided within the budgets (singular points,
