@@ -338,3 +338,32 @@ fn plane_curves_agree_with_the_two_variable_solver() {
     eprintln!("{compared} of 10 plane curves compared");
     assert!(compared >= 5);
 }
+
+mod fuzz {
+    use super::*;
+    use limn::testing::strategies::space_curve_system;
+    use proptest::prelude::*;
+
+    proptest! {
+        // Modest case count for CI; raise with PROPTEST_CASES.
+        #![proptest_config(ProptestConfig::with_cases(24))]
+
+        /// On random and degenerate systems the solver ends within its budget, every crossing
+        /// it names lies on the curve, and every arc joins two crossings in its box (a crossing
+        /// is named once for both boxes that share it, with one of their enclosures: it meets
+        /// the box).
+        #[test]
+        fn random_systems_end_soundly(eqs in space_curve_system(3, 2)) {
+            let opts = SpaceCurveOptions { max_depth: 8, max_boxes: 3_000, ..SpaceCurveOptions::default() };
+            let c = solve_space_curve(&eqs, &opts);
+            prop_assert!(c.boxes <= 3_000 + 8 * 8);
+            crossings_on_curve(&eqs, &c);
+            for a in &c.arcs {
+                for end in [a.from, a.to] {
+                    let e = &c.crossings[end].enclosure;
+                    prop_assert!(e.iter().zip(&a.cell).all(|(x, b)| b[0] <= x[1] && x[0] <= b[1]));
+                }
+            }
+        }
+    }
+}

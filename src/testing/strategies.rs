@@ -146,3 +146,25 @@ pub fn bernstein(max_vars: usize, max_degree: usize) -> impl Strategy<Value = Be
             .prop_map(move |c| Bernstein::new(&degs, c).expect("valid"))
     })
 }
+
+/// A random system for the n-variable curve solver: `nvars − 1` exact polynomials in `nvars`
+/// variables (2..=4), each of degree ≤ `max_degree` in every variable, with exactly-zero and
+/// tiny coefficients mixed in (curves through grid points, near-tangencies, identically zero
+/// equations).
+pub fn space_curve_system(
+    nvars: usize,
+    max_degree: usize,
+) -> impl Strategy<Value = Vec<Bernstein<Rational>>> {
+    assert!((2..=4).contains(&nvars), "2 to 4 variables");
+    let coeff = prop_oneof![
+        4 => small_rational(),
+        1 => Just(Rational::new()),
+        1 => tiny(),
+    ];
+    let poly = prop::collection::vec(0..=max_degree, nvars).prop_flat_map(move |degs| {
+        let n: usize = degs.iter().map(|d| d + 1).product();
+        prop::collection::vec(coeff.clone(), n)
+            .prop_map(move |c| Bernstein::new(&degs, c).expect("valid"))
+    });
+    prop::collection::vec(poly, nvars - 1)
+}
