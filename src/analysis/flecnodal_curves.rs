@@ -17,6 +17,7 @@ use crate::bernstein::Bernstein;
 use crate::model::Model;
 use crate::number::{Precision, Rational};
 use crate::solver::chain::chain;
+use crate::solver::curve2::TIME_LIMIT_REASON;
 use crate::solver::curve_n::{
     solve_space_curve_where, unwarp, unwarp_interval, warp, SpaceCrossing, SpaceCurve,
     SpaceCurveOptions,
@@ -276,6 +277,24 @@ pub fn patch_flecnodal(
         error_bound: None,
         within_tolerance: options.tolerance.is_none(),
     };
+    // Past the time limit, a patch is not started: its whole domain is reported unresolved.
+    if options
+        .solver
+        .deadline
+        .is_some_and(|d| std::time::Instant::now() >= d)
+    {
+        let at = Evaluator::new(patch).eval(0.5, 0.5)[0];
+        out.unresolved = [Chart::AlongU, Chart::AlongV]
+            .map(|chart| FlecnodalUnresolved {
+                patch: index,
+                chart,
+                cell: vec![[0.0, 1.0]; 3],
+                at,
+                reason: TIME_LIMIT_REASON.to_string(),
+            })
+            .to_vec();
+        return out;
+    }
     let k = parabolic_function(patch);
     if k.is_zero() {
         out.degenerate = Some(

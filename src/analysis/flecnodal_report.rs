@@ -199,12 +199,27 @@ impl FlecnodalReport {
         if let (Some(t), Some(e)) = (self.tolerance, self.error_bound) {
             out += &format!("tolerance {t:.3e}, proven error bound {e:.3e}\n");
         }
-        let mut reasons: std::collections::BTreeMap<(usize, &str), usize> = Default::default();
+        // Grouped by reason: the boxes and the patches they are on.
+        let mut reasons: std::collections::BTreeMap<
+            &str,
+            (usize, std::collections::BTreeSet<usize>),
+        > = Default::default();
         for u in &self.unresolved {
-            *reasons.entry((u.patch, u.reason.as_str())).or_default() += 1;
+            let e = reasons.entry(u.reason.as_str()).or_default();
+            e.0 += 1;
+            e.1.insert(u.patch);
         }
-        for ((patch, reason), n) in reasons {
-            out += &format!("  patch {patch}: {n} boxes unresolved: {reason}\n");
+        for (reason, (n, patches)) in reasons {
+            let list: Vec<String> = patches.iter().take(12).map(|p| p.to_string()).collect();
+            let more = if patches.len() > 12 {
+                format!(" and {} more", patches.len() - 12)
+            } else {
+                String::new()
+            };
+            out += &format!(
+                "  {n} boxes unresolved on patches {}{more}: {reason}\n",
+                list.join(", ")
+            );
         }
         for d in &self.degenerate {
             out += &format!("  patch {}: degenerate: {}\n", d.patch, d.reason);
