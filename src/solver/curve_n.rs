@@ -18,7 +18,9 @@
 
 use super::curve2::TIME_LIMIT_REASON;
 use super::dyadic::Dyadic;
-use super::system::{inverse, krawczyk, newton, worth_testing, DyadicBoxN, SystemOptions};
+use super::system::{
+    inverse, krawczyk, newton, split_box, worth_testing, DyadicBoxN, SystemOptions,
+};
 use crate::bernstein::Bernstein;
 use crate::number::{Interval, Number, Precision, Rational};
 use std::collections::HashMap;
@@ -934,23 +936,14 @@ pub fn solve_space_curve_where(
             });
             continue;
         }
-        let mut children = vec![(item.cell.clone(), item.polys)];
-        for axis in 0..n {
-            let mut next = Vec::with_capacity(children.len() * 2);
-            for (b, ps) in children {
-                let mid = b[axis]
-                    .0
-                    .midpoint(b[axis].1)
-                    .expect("max_depth is below the dyadic limit");
-                let (mut l, mut r) = (b.clone(), b);
-                l[axis].1 = mid;
-                r[axis].0 = mid;
-                let (pl, pr): (Vec<_>, Vec<_>) = ps.iter().map(|p| p.subdivide_half(axis)).unzip();
-                next.push((l, pl));
-                next.push((r, pr));
-            }
-            children = next;
-        }
+        let axes: Vec<usize> = (0..n).collect();
+        let Some(children) = split_box(&item.cell, item.polys, &axes) else {
+            out.unresolved.push(SpaceUnresolved {
+                cell: f64_box(&item.cell),
+                reason: "the box is at the finest dyadic subdivision".to_string(),
+            });
+            continue;
+        };
         for (cell, polys) in children.into_iter().rev() {
             stack.push(Item {
                 cell,

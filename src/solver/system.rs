@@ -528,30 +528,41 @@ pub fn solve_system_excluding(
         // on a cube: 2^n children); a thin axis is not split further until the others catch
         // up, so a domain with one very narrow variable costs no more than one without it.
         let widest = lo.iter().zip(&hi).map(|(a, b)| b - a).fold(0.0, f64::max);
-        let mut children: Vec<(DyadicBoxN, Vec<Bernstein<Interval>>)> = vec![(bx.clone(), polys)];
-        for axis in (0..n).filter(|&a| hi[a] - lo[a] >= widest / 2.0) {
-            let mut next = Vec::with_capacity(children.len() * 2);
-            for (b, ps) in children {
-                let Some(mid) = b[axis].0.midpoint(b[axis].1) else {
-                    out.unresolved
-                        .push(lo.iter().zip(&hi).map(|(a, b)| [*a, *b]).collect());
-                    next.clear();
-                    break;
-                };
-                let (mut l, mut r) = (b.clone(), b);
-                l[axis].1 = mid;
-                r[axis].0 = mid;
-                let (pl, pr): (Vec<_>, Vec<_>) = ps.iter().map(|p| p.subdivide_half(axis)).unzip();
-                next.push((l, pl));
-                next.push((r, pr));
-            }
-            children = next;
-        }
+        let axes: Vec<usize> = (0..n).filter(|&a| hi[a] - lo[a] >= widest / 2.0).collect();
+        let Some(children) = split_box(&bx, polys, &axes) else {
+            out.unresolved
+                .push(lo.iter().zip(&hi).map(|(a, b)| [*a, *b]).collect());
+            continue;
+        };
         for (b, ps) in children.into_iter().rev() {
             stack.push((b, depth + 1, ps));
         }
     }
     out
+}
+
+/// A box split at the midpoints of the given axes (2^k children, in a fixed order), each with
+/// the polynomials subdivided with it; `None` if a side is at the dyadic limit.
+pub(crate) fn split_box(
+    bx: &DyadicBoxN,
+    polys: Vec<Bernstein<Interval>>,
+    axes: &[usize],
+) -> Option<Vec<(DyadicBoxN, Vec<Bernstein<Interval>>)>> {
+    let mut children = vec![(bx.clone(), polys)];
+    for &axis in axes {
+        let mut next = Vec::with_capacity(children.len() * 2);
+        for (b, ps) in children {
+            let mid = b[axis].0.midpoint(b[axis].1)?;
+            let (mut l, mut r) = (b.clone(), b);
+            l[axis].1 = mid;
+            r[axis].0 = mid;
+            let (pl, pr): (Vec<_>, Vec<_>) = ps.iter().map(|p| p.subdivide_half(axis)).unzip();
+            next.push((l, pl));
+            next.push((r, pr));
+        }
+        children = next;
+    }
+    Some(children)
 }
 
 /// The simplest rational (smallest denominator, then numerator) in `[lo, hi]`, for
