@@ -474,10 +474,16 @@ fn join_charts<'a>(cu: &'a SpaceCurve, cv: &'a SpaceCurve) -> Joined<'a> {
     // Vertex ids after merging the seam crossings.
     let mut id: Vec<usize> = (0..all.len()).collect();
     for (i, a) in cu.crossings.iter().enumerate() {
-        if a.axis != 2 {
+        // Only on the seams s = 0 and s = 1, where the two charts' systems have the same
+        // zeros (on other planes of s they are different systems).
+        if a.axis != 2 || !a.on_boundary {
             continue;
         }
-        if let Some(j) = cv.crossings.iter().position(|b| a.same_point(b)) {
+        if let Some(j) = cv
+            .crossings
+            .iter()
+            .position(|b| b.on_boundary && a.same_point(b))
+        {
             id[offset + j] = i;
         }
     }

@@ -113,8 +113,10 @@ pub struct SpaceArc {
     pub cell: Vec<[f64; 2]>,
     /// The variable the arc is a graph over (strictly monotone along it).
     pub monotone_in: usize,
-    /// With a tolerance: per variable, a proven bound on the distance in that coordinate
-    /// between the arc and the chord between its crossings' centres (at equal `monotone_in`).
+    /// With a tolerance: per variable, a proven bound on the difference in that coordinate
+    /// between corresponding points of the arc and of the segment between its crossings'
+    /// centres, under a correspondence onto both (so the Hausdorff distance in the max norm
+    /// is at most the largest entry).
     pub deviation: Option<Vec<f64>>,
 }
 
@@ -298,6 +300,20 @@ fn to_global(local: &[[f64; 2]], a: &[f64], b: &[f64]) -> Vec<[f64; 2]> {
         .collect()
 }
 
+/// The same map for a uniqueness region, rounded inward (a region must not claim more than
+/// was tested; with dyadic ends the map is exact anyway).
+fn to_global_inward(local: &[[f64; 2]], a: &[f64], b: &[f64]) -> Vec<[f64; 2]> {
+    local
+        .iter()
+        .enumerate()
+        .map(|(k, t)| {
+            let w = Interval::point(b[k]).sub(&Interval::point(a[k]));
+            let at = |x: f64| Interval::point(a[k]).add(&w.mul(&Interval::point(x)));
+            [at(t[0]).hi(), at(t[1]).lo()]
+        })
+        .collect()
+}
+
 /// Sub-box `[lo, hi]` (local) of the box a Krawczyk image `k` (in the sub-box's own unit
 /// coordinates) lies in, rounded outward.
 fn sub_to_local(k: &[Interval], lo: &[f64], hi: &[f64]) -> Vec<[f64; 2]> {
@@ -326,10 +342,16 @@ fn face_roots(face: Vec<Bernstein<Interval>>, opts: &SystemOptions) -> Option<Ve
             if let Some(k) = krawczyk(&polys) {
                 let unique: Vec<[f64; 2]> = lo.iter().zip(&hi).map(|(a, b)| [*a, *b]).collect();
                 let enc = refine_local(&polys, k, &lo, &hi, opts.refine_width);
-                out.push(FaceRoot {
-                    enclosure: enc,
-                    unique_in: unique,
-                });
+                // Found already by a grown test of a neighbouring sub-box?
+                let seen = out
+                    .iter()
+                    .any(|r| within(&enc, &r.unique_in) || within(&r.enclosure, &unique));
+                if !seen {
+                    out.push(FaceRoot {
+                        enclosure: enc,
+                        unique_in: unique,
+                    });
+                }
                 continue;
             }
             // A zero near the sub-box's sides: the test on the grown box (not on the whole
@@ -631,7 +653,7 @@ impl Solver<'_> {
                                 .into_iter()
                                 .map(|r| FaceRoot {
                                     enclosure: to_global(&r.enclosure, &dlo, &dhi),
-                                    unique_in: to_global(&r.unique_in, &dlo, &dhi),
+                                    unique_in: to_global_inward(&r.unique_in, &dlo, &dhi),
                                 })
                                 .collect::<Vec<_>>()
                         });
@@ -742,22 +764,43 @@ impl Solver<'_> {
         let devs = crossings
             .chunks_exact(2)
             .map(|pair| {
-                let span = (pair[1].enclosure[i][1] - pair[0].enclosure[i][0]) / width[i];
+                // The arc's extent along x_i in box units (an upper bound).
+                let span = Interval::point(pair[1].enclosure[i][1])
+                    .sub(&Interval::point(pair[0].enclosure[i][0]))
+                    .mul(
+                        &Interval::point(width[i])
+                            .recip()
+                            .unwrap_or(Interval::new(0.0, f64::INFINITY)),
+                    )
+                    .hi()
+                    .clamp(0.0, 1.0);
+                let span = Interval::point(span);
                 let dev: Vec<f64> = (0..n)
                     .map(|k| {
-                        if k == i {
-                            return 0.0;
-                        }
-                        // In local coordinates the arc deviates from its chord by at most
-                        // span² |η''| / 8; back to global: times the width.
-                        let local = Interval::point(span * span / 8.0)
-                            .mul(&Interval::point(curvature))
-                            .hi();
-                        let global = Interval::point(local).mul(&Interval::point(width[k])).hi();
-                        // The chord joins the enclosures' centres: add their half-widths.
-                        let half = |c: &RawCrossing| 0.5 * (c.enclosure[k][1] - c.enclosure[k][0]);
-                        let slack = Interval::point(half(&pair[0]).max(half(&pair[1])));
-                        Interval::point(global.min(width[k])).add(&slack).hi()
+                        // In local coordinates the arc deviates from the chord between its true
+                        // ends, at equal x_i, by at most span² |η''| / 8; back to global: times
+                        // the width (and never more than the box's width).
+                        let bulge = if k == i {
+                            0.0
+                        } else {
+                            span.mul(&span)
+                                .mul(&Interval::point(0.125))
+                                .mul(&Interval::point(curvature))
+                                .mul(&Interval::point(width[k]))
+                                .hi()
+                                .min(width[k])
+                        };
+                        // The drawn chord joins the enclosures' centres: moving each end by at
+                        // most its half-width moves every point of the chord (at equal chord
+                        // parameter) by at most the larger one, in every coordinate.
+                        let half = |c: &RawCrossing| {
+                            Interval::point(c.enclosure[k][1])
+                                .sub(&Interval::point(c.enclosure[k][0]))
+                                .mul(&Interval::point(0.5))
+                                .hi()
+                        };
+                        let slack = half(&pair[0]).max(half(&pair[1]));
+                        Interval::point(bulge).add(&Interval::point(slack)).hi()
                     })
                     .collect();
                 accurate &= dev.iter().zip(tol).all(|(d, t)| d <= t);
