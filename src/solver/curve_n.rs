@@ -287,29 +287,31 @@ fn face_slice(p: &Bernstein<Interval>, axis: usize, side: bool) -> Bernstein<Int
     Bernstein::new(&degrees, coeffs).expect("the face keeps the other degrees")
 }
 
-/// Local unit-box coordinates `[lo, hi]` mapped into the box `[a, b]`, rounded outward.
+/// Local unit-box coordinates `[lo, hi]` mapped into the box `[a, b]`, rounded outward (an
+/// enclosure keeps what it holds).
 fn to_global(local: &[[f64; 2]], a: &[f64], b: &[f64]) -> Vec<[f64; 2]> {
-    local
-        .iter()
-        .enumerate()
-        .map(|(k, t)| {
-            let w = Interval::point(b[k]).sub(&Interval::point(a[k]));
-            let at = |x: f64| Interval::point(a[k]).add(&w.mul(&Interval::point(x)));
-            [at(t[0]).lo(), at(t[1]).hi()]
-        })
-        .collect()
+    map_into(local, a, b, false)
 }
 
 /// The same map for a uniqueness region, rounded inward (a region must not claim more than
 /// was tested; with dyadic ends the map is exact anyway).
 fn to_global_inward(local: &[[f64; 2]], a: &[f64], b: &[f64]) -> Vec<[f64; 2]> {
+    map_into(local, a, b, true)
+}
+
+fn map_into(local: &[[f64; 2]], a: &[f64], b: &[f64], inward: bool) -> Vec<[f64; 2]> {
     local
         .iter()
         .enumerate()
         .map(|(k, t)| {
             let w = Interval::point(b[k]).sub(&Interval::point(a[k]));
             let at = |x: f64| Interval::point(a[k]).add(&w.mul(&Interval::point(x)));
-            [at(t[0]).hi(), at(t[1]).lo()]
+            let (lo, hi) = (at(t[0]), at(t[1]));
+            if inward {
+                [lo.hi(), hi.lo()]
+            } else {
+                [lo.lo(), hi.hi()]
+            }
         })
         .collect()
 }

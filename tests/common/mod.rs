@@ -40,3 +40,19 @@ pub fn two_squares(folder: &str) -> PathBuf {
     std::fs::write(&path, text).unwrap();
     path
 }
+
+/// Runs `limn` with a time limit already among `args` and JSON output: the run succeeds, is
+/// not certified, and every unresolved entry names the time limit. Returns the report.
+#[allow(dead_code)] // not every test file that shares this module runs out of time
+pub fn time_limited(args: &[&str]) -> serde_json::Value {
+    let (code, out, err) = limn(args);
+    assert_eq!(code, Some(0), "{args:?}: {err}");
+    let r: serde_json::Value = serde_json::from_str(&out).expect("a JSON report");
+    assert_eq!(r["certified"], false);
+    let unresolved = r["unresolved"].as_array().expect("an unresolved list");
+    assert!(!unresolved.is_empty());
+    assert!(unresolved
+        .iter()
+        .all(|u| u["reason"].as_str().unwrap_or("").contains("time limit")));
+    r
+}
