@@ -11,7 +11,7 @@ const MAX_ARC_POINTS: usize = 1 << 18;
 
 /// `x / w` for an interval `w` of strict sign, outward rounded (one ulp each way covers the
 /// round-to-nearest error of each candidate quotient).
-fn div(x: Interval, w: Interval) -> Option<Interval> {
+pub(crate) fn div(x: Interval, w: Interval) -> Option<Interval> {
     if !w.sign().is_nonzero() {
         return None;
     }
@@ -80,6 +80,40 @@ pub(crate) struct SurfaceBounds {
     h: Vec<[Bernstein<Interval>; 6]>,
 }
 
+/// A bivariate polynomial restricted to the box `[lo, hi]` of its domain, as interval
+/// Bernstein coefficients that enclose the exact restriction's (two de Casteljau splits per
+/// axis, the second at an interval parameter that contains the exact one); `None` for a box
+/// outside `[0, 1]²`. A side of zero width restricts to that line.
+pub(crate) fn restrict_enclosing(
+    p: &Bernstein<Interval>,
+    lo: [f64; 2],
+    hi: [f64; 2],
+) -> Option<Bernstein<Interval>> {
+    let mut q = p.clone();
+    for axis in 0..2 {
+        let (a, b) = (lo[axis], hi[axis]);
+        if !(0.0 <= a && a < b && b <= 1.0) {
+            if a == b && (0.0..=1.0).contains(&a) {
+                q = q.restrict(axis, &Interval::point(a), &Interval::point(a));
+                continue;
+            }
+            return None;
+        }
+        if a > 0.0 {
+            q = q.subdivide(axis, &Interval::point(a)).1;
+        }
+        if b < 1.0 {
+            let t = div(
+                Interval::point(b).sub(&Interval::point(a)),
+                Interval::point(1.0).sub(&Interval::point(a)),
+            )?;
+            let t = Interval::try_new(t.lo().max(0.0), t.hi().min(1.0))?;
+            q = q.subdivide(axis, &t).0;
+        }
+    }
+    Some(q)
+}
+
 impl SurfaceBounds {
     /// Converts (once) the patch's exact polynomials.
     pub(crate) fn new(patch: &RationalPatch) -> SurfaceBounds {
@@ -132,35 +166,11 @@ impl PatchAccuracy {
     }
 
     /// The range of a polynomial over a box, enclosed: the Bernstein coefficients of its
-    /// restriction (two de Casteljau splits per axis, the second at an interval parameter that
-    /// contains the exact one, so the result encloses the exact restriction) bound it.
+    /// restriction ([`restrict_enclosing`]) bound it.
     fn range(p: &Bernstein<Interval>, lo: [f64; 2], hi: [f64; 2]) -> Interval {
-        let mut q = p.clone();
-        for axis in 0..2 {
-            let (a, b) = (lo[axis], hi[axis]);
-            if !(0.0 <= a && a < b && b <= 1.0) {
-                if a == b && (0.0..=1.0).contains(&a) {
-                    // A degenerate box side (an arc on an edge): restrict to the point.
-                    q = q.restrict(axis, &Interval::point(a), &Interval::point(a));
-                    continue;
-                }
-                return Interval::new(f64::NEG_INFINITY, f64::INFINITY);
-            }
-            if a > 0.0 {
-                q = q.subdivide(axis, &Interval::point(a)).1;
-            }
-            if b < 1.0 {
-                let t = div(
-                    Interval::point(b).sub(&Interval::point(a)),
-                    Interval::point(1.0).sub(&Interval::point(a)),
-                );
-                let Some(t) = t.and_then(|t| Interval::try_new(t.lo().max(0.0), t.hi().min(1.0)))
-                else {
-                    return Interval::new(f64::NEG_INFINITY, f64::INFINITY);
-                };
-                q = q.subdivide(axis, &t).0;
-            }
-        }
+        let Some(q) = restrict_enclosing(p, lo, hi) else {
+            return Interval::new(f64::NEG_INFINITY, f64::INFINITY);
+        };
         let (a, b) = q.range_f64();
         Interval::try_new(a, b).unwrap_or(Interval::new(f64::NEG_INFINITY, f64::INFINITY))
     }

@@ -9,13 +9,13 @@
 //! identically zero: planes, cylinders, cones) is flecnodal everywhere along its rulings: it is
 //! reported as degenerate, not solved.
 
-use super::accuracy::SurfaceBounds;
+use super::patch_curve::{Accuracy, Evaluator, SIDES};
 use super::flecnodal::{flecnodal_system, Chart};
 use super::parabolic::parabolic_function;
 use super::projection::lift;
 use crate::bernstein::Bernstein;
 use crate::model::Model;
-use crate::number::{Precision, Rational};
+use crate::number::Rational;
 use crate::solver::chain::chain;
 use crate::solver::curve2::TIME_LIMIT_REASON;
 use crate::solver::curve_n::{
@@ -164,12 +164,6 @@ fn warp_f64(k: usize) -> f64 {
     WARP[k].0 as f64 / WARP[k].1 as f64
 }
 
-const SIDES: [(usize, bool, &str); 4] = [
-    (0, false, "u=0"),
-    (0, true, "u=1"),
-    (1, false, "v=0"),
-    (1, true, "v=1"),
-];
 
 /// The system with the linear factors of the sides on which both polynomials vanish for
 /// every direction divided out (exactly, as often as they divide), and the sides divided.
@@ -193,59 +187,25 @@ fn deflate(mut eqs: [Poly; 2]) -> ([Poly; 2], Vec<&'static str>) {
     (eqs, divided)
 }
 
-/// f64 evaluation of a patch and its first partials.
-struct Evaluator {
-    /// X, Y, Z, W and their u and v derivatives.
-    h: Vec<[Bernstein<f64>; 3]>,
-}
 
-impl Evaluator {
-    fn new(patch: &RationalPatch) -> Evaluator {
-        Evaluator {
-            h: patch
-                .homogeneous()
-                .iter()
-                .map(|p| [p, &p.deriv(0), &p.deriv(1)].map(|q| q.convert(Precision::F64)))
-                .collect(),
-        }
-    }
-
-    /// S, S_u, S_v at (u, v).
-    fn eval(&self, u: f64, v: f64) -> [[f64; 3]; 3] {
-        let at: Vec<[f64; 3]> = self
-            .h
-            .iter()
-            .map(|d| [d[0].eval(&[u, v]), d[1].eval(&[u, v]), d[2].eval(&[u, v])])
-            .collect();
-        let w = at[3];
-        let mut out = [[0.0; 3]; 3];
-        for k in 0..3 {
-            let s = at[k][0] / w[0];
-            out[0][k] = s;
-            out[1][k] = (at[k][1] - s * w[1]) / w[0];
-            out[2][k] = (at[k][2] - s * w[2]) / w[0];
-        }
-        out
-    }
-
-    fn point(&self, chart: Chart, c: &SpaceCrossing) -> FlecnodalPoint {
-        let t = c.point();
-        let p: Vec<f64> = (0..3).map(|k| unwarp(t[k], warp_f64(k))).collect();
-        let sigma = 2.0 * p[2] - 1.0;
-        let (a, b) = match chart {
-            Chart::AlongU => (1.0, sigma),
-            Chart::AlongV => (sigma, 1.0),
-        };
-        let len = (a * a + b * b).sqrt();
-        let [s, su, sv] = self.eval(p[0], p[1]);
-        let t: [f64; 3] = std::array::from_fn(|k| a * su[k] + b * sv[k]);
-        let tl = (t[0] * t[0] + t[1] * t[1] + t[2] * t[2]).sqrt();
-        FlecnodalPoint {
-            uv: [p[0], p[1]],
-            direction_uv: [a / len, b / len],
-            xyz: s,
-            line: t.map(|x| x / tl),
-        }
+/// A point of the curve from a crossing of the solver in a chart.
+fn flecnodal_point(eval: &Evaluator, chart: Chart, c: &SpaceCrossing) -> FlecnodalPoint {
+    let t = c.point();
+    let p: Vec<f64> = (0..3).map(|k| unwarp(t[k], warp_f64(k))).collect();
+    let sigma = 2.0 * p[2] - 1.0;
+    let (a, b) = match chart {
+        Chart::AlongU => (1.0, sigma),
+        Chart::AlongV => (sigma, 1.0),
+    };
+    let len = (a * a + b * b).sqrt();
+    let [s, su, sv] = eval.eval(p[0], p[1]);
+    let t: [f64; 3] = std::array::from_fn(|k| a * su[k] + b * sv[k]);
+    let tl = (t[0] * t[0] + t[1] * t[1] + t[2] * t[2]).sqrt();
+    FlecnodalPoint {
+        uv: [p[0], p[1]],
+        direction_uv: [a / len, b / len],
+        xyz: s,
+        line: t.map(|x| x / tl),
     }
 }
 
@@ -337,11 +297,13 @@ pub fn patch_flecnodal(
     }
     let elliptic = [warp(&lift(&k, 3, 0), &lambda)];
     let eval = Evaluator::new(patch);
-    let accuracy = options.tolerance.and_then(|t| Accuracy::new(patch, t));
+    let accuracy = options
+        .tolerance
+        .and_then(|t| Accuracy::new(patch, t, [warp_f64(0), warp_f64(1)]));
     let mut opts = options.solver.clone();
     if let Some(a) = &accuracy {
-        opts.tolerance = Some(a.solver_tolerance.to_vec());
-        opts.max_chord = Some(a.solver_chord.to_vec());
+        opts.tolerance = Some(vec![a.solver_tolerance[0], a.solver_tolerance[1], f64::INFINITY]);
+        opts.max_chord = Some(vec![a.solver_chord[0], a.solver_chord[1], f64::INFINITY]);
     }
     let opts = &opts;
     let (cu, cv) = rayon::join(
@@ -368,7 +330,7 @@ pub fn patch_flecnodal(
     if let (Some(a), Some(t)) = (&accuracy, options.tolerance) {
         let bound = [&cu, &cv]
             .iter()
-            .flat_map(|c| c.arcs.iter().map(move |arc| a.error(c, arc)))
+            .flat_map(|c| c.arcs.iter().map(move |arc| a.error(c, arc, 0)))
             .try_fold(0.0f64, |m, e| e.map(|e| m.max(e)));
         out.error_bound = bound;
         out.within_tolerance = bound.is_some_and(|b| b <= t);
@@ -379,81 +341,13 @@ pub fn patch_flecnodal(
             patch: index,
             points: vertices
                 .into_iter()
-                .map(|(k, c)| eval.point(charts[k], c))
+                .map(|(k, c)| flecnodal_point(&eval, charts[k], c))
                 .collect(),
             closed,
             complete,
         })
         .collect();
     out
-}
-
-/// Bounds of a patch's derivatives over its square, and the solver's targets that make every
-/// drawn segment lie within the tolerance of the curve in space.
-struct Accuracy {
-    /// |S_u|, |S_v|, |S_uu|, |S_uv|, |S_vv| over the patch.
-    l: [f64; 2],
-    s2: [f64; 3],
-    /// Per variable (u, v, s) in the solver's (warped) coordinates.
-    solver_tolerance: [f64; 3],
-    solver_chord: [f64; 3],
-}
-
-/// The largest derivative of the map of [`warp`] from t to u (λ or 1/λ), and a bound on the
-/// magnitude of its second derivative, `2λ|λ − 1| / min(1, λ)³`.
-fn warp_bounds(k: usize) -> (f64, f64) {
-    let l = warp_f64(k);
-    let first = l.max(1.0 / l);
-    let second = 2.0 * l * (l - 1.0).abs() / l.min(1.0).powi(3);
-    (first * (1.0 + 1e-12), second * (1.0 + 1e-12))
-}
-
-impl Accuracy {
-    fn new(patch: &RationalPatch, tol: f64) -> Option<Accuracy> {
-        let b = SurfaceBounds::new(patch);
-        let [lu, suu, suv, svv] = b.bounds([0.0, 0.0], [1.0, 1.0], 0)?;
-        let [lv, ..] = b.bounds([0.0, 0.0], [1.0, 1.0], 1)?;
-        let (du, ddu) = warp_bounds(0);
-        let (dv, ddv) = warp_bounds(1);
-        // Half the tolerance for the parameter deviation, half for the chords' bulge.
-        let dev = [
-            tol / (4.0 * du * lu.max(1e-300)),
-            tol / (4.0 * dv * lv.max(1e-300)),
-        ];
-        let bulge = ddu * lu + ddv * lv + suu + 2.0 * suv + svv;
-        let c = (4.0 * tol / bulge.max(1e-300)).sqrt();
-        Some(Accuracy {
-            l: [lu, lv],
-            s2: [suu, suv, svv],
-            solver_tolerance: [dev[0], dev[1], f64::INFINITY],
-            solver_chord: [c / du, c / dv, f64::INFINITY],
-        })
-    }
-
-    /// The bound on the distance in space between an arc's image and the segment between
-    /// its ends' images: `Σ L_k (Λ_k dev_k + h_k² |φ_k''| / 8) + (S_uu Δu² + 2 S_uv |Δu Δv| +
-    /// S_vv Δv²) / 8` with `Δ = Λ h` (`proofs/space-curves.md` §5).
-    fn error(&self, c: &SpaceCurve, arc: &crate::solver::curve_n::SpaceArc) -> Option<f64> {
-        let dev = arc.deviation.as_ref()?;
-        let (a, b) = (
-            &c.crossings[arc.from].enclosure,
-            &c.crossings[arc.to].enclosure,
-        );
-        let h = |k: usize| a[k][1].max(b[k][1]) - a[k][0].min(b[k][0]);
-        let mut e = 0.0;
-        let mut delta = [0.0; 2];
-        for k in 0..2 {
-            let (d1, d2) = warp_bounds(k);
-            e += self.l[k] * (d1 * dev[k] + h(k) * h(k) * d2 / 8.0);
-            delta[k] = d1 * h(k);
-        }
-        e += (self.s2[0] * delta[0] * delta[0]
-            + 2.0 * self.s2[1] * delta[0] * delta[1]
-            + self.s2[2] * delta[1] * delta[1])
-            / 8.0;
-        // A relative margin for the rounding of this sum.
-        Some(e * (1.0 + 1e-9))
-    }
 }
 
 /// Chains the arcs of both charts into branches, joining the charts at the directions they

@@ -2,6 +2,8 @@
 
 pub mod accuracy;
 pub mod baseline;
+pub mod bitangent;
+pub mod bitangent_curves;
 pub mod facing;
 pub mod flecnodal;
 pub mod flecnodal_curves;
@@ -10,6 +12,7 @@ pub mod fold_edges;
 pub mod hlr;
 pub mod model_curves;
 pub mod parabolic;
+pub mod patch_curve;
 pub mod projection;
 pub mod ray;
 pub mod render;

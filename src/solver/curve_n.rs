@@ -878,6 +878,37 @@ pub fn solve_space_curve_where(
     nonpositive: &[Bernstein<Rational>],
     opts: &SpaceCurveOptions,
 ) -> SpaceCurve {
+    solve_space_curve_excluding(eqs, nonpositive, &|_: &[[f64; 2]], _: u32| BoxVerdict::Solve, opts)
+}
+
+/// What a caller says of a box before the solver examines it (see
+/// [`solve_space_curve_excluding`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BoxVerdict {
+    /// Examine it as usual.
+    Solve,
+    /// The caller has proven that the box holds no point of the curve it wants (a spurious
+    /// component, or a mirror image of another box): it is dropped. The crossings of the
+    /// curve on the faces it shares with kept boxes stay, as ends of their branches.
+    Drop,
+    /// The caller gives up on the box: it is reported unresolved with this reason.
+    Unresolved(&'static str),
+}
+
+/// [`solve_space_curve_where`] with a caller's verdict on every box before it is examined
+/// (its sides `[lo, hi]` per variable, exact dyadics, and its depth): the curve of the result
+/// is the curve of `eqs` outside the dropped boxes. What a dropped box is allowed to hold is
+/// the caller's claim (for bitangents: only the spurious diagonal, or the mirror image of a
+/// kept box, `proofs/bitangent.md`).
+///
+/// # Panics
+/// As [`solve_space_curve_where`].
+pub fn solve_space_curve_excluding(
+    eqs: &[Bernstein<Rational>],
+    nonpositive: &[Bernstein<Rational>],
+    verdict: &dyn Fn(&[[f64; 2]], u32) -> BoxVerdict,
+    opts: &SpaceCurveOptions,
+) -> SpaceCurve {
     let n = eqs.first().map_or(0, |p| p.nvars());
     assert!(
         n >= 2 && eqs.len() == n - 1 && eqs.iter().chain(nonpositive).all(|p| p.nvars() == n),
@@ -914,6 +945,17 @@ pub fn solve_space_curve_where(
         let (equations, filter_polys) = item.polys.split_at(n - 1);
         if equations.iter().any(excludes) || filter_polys.iter().any(positive) {
             continue;
+        }
+        match verdict(&f64_box(&item.cell), item.depth) {
+            BoxVerdict::Solve => {}
+            BoxVerdict::Drop => continue,
+            BoxVerdict::Unresolved(reason) => {
+                out.unresolved.push(SpaceUnresolved {
+                    cell: f64_box(&item.cell),
+                    reason: reason.to_string(),
+                });
+                continue;
+            }
         }
         let (reason, accurate_enough) = match solver.settle(&item.cell, equations) {
             Settled::Arcs {

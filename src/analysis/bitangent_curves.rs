@@ -1,0 +1,515 @@
+//! Bitangent curves of a model: for every pair of patches (a patch with itself included) whose
+//! normals can be parallel, the curve of pairs `(p, q)` with one tangent plane, solved by the
+//! n-variable curve solver ([`crate::solver::curve_n`]) on the system of
+//! [`super::bitangent`] in `(u, v, s, t)`, and mapped to the surface.
+//!
+//! Pairs of patches whose cones of normals are disjoint (and not opposite) are pruned without
+//! solving. For a patch with itself, the spurious diagonal is kept out by
+//! [`DiagonalTest::excludes`], and only one of the two orders of each pair is solved (the
+//! Morton half of [`mirror_dropped`]); the curve's ends on the boundary between the halves are
+//! joined to their mirror images, so every pair is reported once (`proofs/bitangent.md`).
+//! Where two patches meet in space (a shared side, a pole, an intersection), pairs of nearby
+//! points are not separated from the spurious coincident pairs: boxes whose two pieces'
+//! enclosures overlap at `coincidence_depth` are reported unresolved.
+
+use super::bitangent::{bitangent_system, deflated_normal, mirror_dropped, DiagonalTest};
+use super::patch_curve::{Accuracy, Evaluator};
+use crate::model::Model;
+use crate::number::{Interval, Rational};
+use crate::solver::chain::chain;
+use crate::solver::curve2::TIME_LIMIT_REASON;
+use crate::solver::curve_n::{
+    solve_space_curve_excluding, unwarp, unwarp_interval, warp, BoxVerdict, SpaceCurve,
+    SpaceCurveOptions,
+};
+use crate::surface::RationalPatch;
+use rayon::prelude::*;
+
+/// What to compute.
+#[derive(Clone, Debug)]
+pub struct BitangentOptions {
+    /// Budgets of the curve solver (its `tolerance` and `max_chord` are set from
+    /// `tolerance`).
+    pub solver: SpaceCurveOptions,
+    /// The largest allowed distance in space between the drawn polylines and the true curves
+    /// (both points of each pair), in model units; `None`: topology only.
+    pub tolerance: Option<f64>,
+    /// The depth from which a box whose two pieces may meet in space is given up.
+    pub coincidence_depth: u32,
+}
+
+impl Default for BitangentOptions {
+    fn default() -> Self {
+        BitangentOptions::with_tolerance(None)
+    }
+}
+
+impl BitangentOptions {
+    /// The defaults for a model: per pair 20,000 boxes to depth 12 for the topology; with a
+    /// tolerance 100,000 to depth 16.
+    pub fn with_tolerance(tolerance: Option<f64>) -> BitangentOptions {
+        let (max_depth, max_boxes) = if tolerance.is_some() {
+            (16, 100_000)
+        } else {
+            (12, 20_000)
+        };
+        BitangentOptions {
+            solver: SpaceCurveOptions {
+                max_depth,
+                max_boxes,
+                ..SpaceCurveOptions::default()
+            },
+            tolerance,
+            coincidence_depth: 4,
+        }
+    }
+}
+
+/// A bitangent pair: two points with one tangent plane.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct BitangentPoint {
+    /// The parameters of the first point on the first patch (centre of a proven enclosure).
+    pub first_uv: [f64; 2],
+    /// The parameters of the second point on the second patch.
+    pub second_uv: [f64; 2],
+    /// The first point.
+    pub p: [f64; 3],
+    /// The second point.
+    pub q: [f64; 3],
+    /// The unit direction of `q − p`: the view direction along which the two points line up
+    /// (the event direction on the viewing sphere, up to sign).
+    pub line: [f64; 3],
+    /// The unit normal of the common tangent plane (the first patch's orientation).
+    pub normal: [f64; 3],
+}
+
+/// A connected piece of a bitangent curve of a pair of patches.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct BitangentBranch {
+    /// The patches of the first and second points.
+    pub patches: [usize; 2],
+    /// Its pairs in order along the curve.
+    pub points: Vec<BitangentPoint>,
+    /// A closed loop.
+    pub closed: bool,
+    /// Its ends lie on the patches' sides (or it is closed): nothing is missing at its ends.
+    pub complete: bool,
+}
+
+/// A region of `(u, v, s, t)` whose part of the curve was not decided.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct BitangentUnresolved {
+    /// The patches.
+    pub patches: [usize; 2],
+    /// The box, `[lo, hi]` for u, v, s and t.
+    #[serde(rename = "box")]
+    pub cell: Vec<[f64; 2]>,
+    /// The surface points at the centres of the two parameter boxes (for drawing).
+    pub at: [[f64; 3]; 2],
+    /// Why.
+    pub reason: String,
+}
+
+/// The bitangents of one pair of patches.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct PairBitangents {
+    /// The patches (`first ≤ second`).
+    pub patches: [usize; 2],
+    /// The branches.
+    pub branches: Vec<BitangentBranch>,
+    /// What was not decided.
+    pub unresolved: Vec<BitangentUnresolved>,
+    /// Boxes examined.
+    pub boxes: usize,
+    /// Boxes recomputed exactly.
+    pub escalations: usize,
+    /// Sides of the first patch divided out of its normal (collapsed sides: their limit normal
+    /// is used).
+    pub divided_sides: Vec<&'static str>,
+    /// With a tolerance: the largest proven distance between a drawn segment and the curve of
+    /// either point, if a bound was found.
+    pub error_bound: Option<f64>,
+    /// With a tolerance: every drawn segment is proven within it.
+    pub within_tolerance: bool,
+}
+
+impl PairBitangents {
+    /// Topology proven: nothing unresolved and every branch complete.
+    pub fn is_certified(&self) -> bool {
+        self.unresolved.is_empty() && self.branches.iter().all(|b| b.complete)
+    }
+}
+
+/// The bitangents of a model.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct BitangentCurves {
+    /// The pairs solved (in order of patches).
+    pub pairs: Vec<PairBitangents>,
+    /// Pairs of distinct patches pruned: their normal cones are neither overlapping nor
+    /// opposite, so no two normals are parallel.
+    pub pruned: usize,
+    /// Patches whose pair with themselves was excluded whole by the diagonal lemma.
+    pub excluded_self: usize,
+    /// All pairs considered (`n (n + 1) / 2`).
+    pub pairs_total: usize,
+}
+
+impl BitangentCurves {
+    /// Every pair certified.
+    pub fn is_certified(&self) -> bool {
+        self.pairs.iter().all(PairBitangents::is_certified)
+    }
+}
+
+/// The Möbius factors of [`warp`] for `(u, v)` and the same for `(s, t)` (the same grid for
+/// both points, so that a pair and its mirror image fall on the same grid planes).
+const WARP: [(i64, i64); 2] = [(33, 32), (29, 32)];
+
+fn lambda(k: usize) -> f64 {
+    WARP[k % 2].0 as f64 / WARP[k % 2].1 as f64
+}
+
+const COINCIDENT_REASON: &str = "the two pieces may meet in space (a shared side, a pole or an \
+     intersection): pairs of nearby points are not separated from the coincident ones";
+
+/// A cone that contains every normal of a patch: a unit axis and a half-angle below π/2 (the
+/// normals are positive combinations of the coefficient vectors of the deflated normal).
+pub fn normal_cone(patch: &RationalPatch) -> Option<([f64; 3], f64)> {
+    let (n, _) = deflated_normal(patch);
+    let vecs: Vec<[f64; 3]> = (0..n[0].coeffs().len())
+        .map(|i| std::array::from_fn(|k| n[k].coeffs()[i].to_f64()))
+        .filter(|v: &[f64; 3]| v.iter().any(|x| *x != 0.0))
+        .collect();
+    let unit = |v: [f64; 3]| {
+        let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+        v.map(|x| x / l)
+    };
+    let mut axis = [0.0; 3];
+    for v in &vecs {
+        let u = unit(*v);
+        for k in 0..3 {
+            axis[k] += u[k];
+        }
+    }
+    if axis.iter().all(|x| *x == 0.0) {
+        return None;
+    }
+    let axis = unit(axis);
+    let mut half = 0.0f64;
+    for v in &vecs {
+        let u = unit(*v);
+        let c = (u[0] * axis[0] + u[1] * axis[1] + u[2] * axis[2]).clamp(-1.0, 1.0);
+        half = half.max(c.acos());
+    }
+    // A margin for the rounding of the coefficients and of this computation.
+    let half = half + 1e-9;
+    (half < std::f64::consts::FRAC_PI_2).then_some((axis, half))
+}
+
+/// Whether two cones hold no parallel (or antiparallel) pair of vectors.
+fn cones_apart(a: &([f64; 3], f64), b: &([f64; 3], f64)) -> bool {
+    let c = (a.0[0] * b.0[0] + a.0[1] * b.0[1] + a.0[2] * b.0[2]).clamp(-1.0, 1.0);
+    let angle = c.acos();
+    let reach = a.1 + b.1 + 1e-9;
+    angle > reach && std::f64::consts::PI - angle > reach
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn unit_or_zero(v: [f64; 3]) -> [f64; 3] {
+    let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    if l > 0.0 {
+        v.map(|x| x / l)
+    } else {
+        [0.0; 3]
+    }
+}
+
+/// A patch's data for a pair: its evaluator and its interval jets.
+struct Side {
+    eval: Evaluator,
+    jets: DiagonalTest,
+}
+
+/// The real parameter box of a solver box's variables `offset, offset + 1`.
+fn params(cell: &[[f64; 2]], offset: usize) -> ([f64; 2], [f64; 2]) {
+    let a = unwarp_interval(cell[offset], lambda(0));
+    let b = unwarp_interval(cell[offset + 1], lambda(1));
+    ([a[0], b[0]], [a[1], b[1]])
+}
+
+fn boxes_meet(a: &[Interval; 3], b: &[Interval; 3]) -> bool {
+    (0..3).all(|k| a[k].lo() <= b[k].hi() && b[k].lo() <= a[k].hi())
+}
+
+/// The bitangents of one pair of patches (`same`: the first is the second; the indices are
+/// only recorded).
+///
+/// # Examples
+/// ```
+/// use limn::analysis::bitangent_curves::{pair_bitangents, BitangentOptions};
+/// use limn::number::Rational;
+/// use limn::testing::shapes;
+/// let q = |n: i64| Rational::from(n);
+/// // z = x² + y², a convex bowl: no two points share a tangent plane.
+/// let p = shapes::graph(&[(2, 0, q(1)), (0, 2, q(1))], [q(-1), q(1)], [q(-1), q(1)]);
+/// let b = pair_bitangents(&p, 0, &p, 0, &BitangentOptions::default());
+/// assert!(b.is_certified() && b.branches.is_empty());
+/// ```
+pub fn pair_bitangents(
+    first: &RationalPatch,
+    i: usize,
+    second: &RationalPatch,
+    j: usize,
+    options: &BitangentOptions,
+) -> PairBitangents {
+    let same = i == j;
+    let sides = [first, second].map(|patch| Side {
+        eval: Evaluator::new(patch),
+        jets: DiagonalTest::new(patch),
+    });
+    let mut out = PairBitangents {
+        patches: [i, j],
+        branches: Vec::new(),
+        unresolved: Vec::new(),
+        boxes: 0,
+        escalations: 0,
+        divided_sides: Vec::new(),
+        error_bound: None,
+        within_tolerance: options.tolerance.is_none(),
+    };
+    let centre = |cell: &[[f64; 2]]| -> [[f64; 3]; 2] {
+        std::array::from_fn(|k| {
+            let (lo, hi) = params(cell, 2 * k);
+            sides[k]
+                .eval
+                .eval(0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]))[0]
+        })
+    };
+    if options
+        .solver
+        .deadline
+        .is_some_and(|d| std::time::Instant::now() >= d)
+    {
+        let cell = vec![[0.0, 1.0]; 4];
+        out.unresolved.push(BitangentUnresolved {
+            patches: [i, j],
+            at: centre(&cell),
+            cell,
+            reason: TIME_LIMIT_REASON.to_string(),
+        });
+        return out;
+    }
+    let (eqs, divided) = bitangent_system(first, second);
+    out.divided_sides = divided;
+    let lambdas: Vec<Rational> = (0..4)
+        .map(|k| Rational::from(WARP[k % 2]))
+        .collect();
+    let eqs: Vec<_> = eqs.iter().map(|p| warp(p, &lambdas)).collect();
+    let accuracy: Option<[Accuracy; 2]> = options.tolerance.and_then(|t| {
+        Some([
+            Accuracy::new(first, t, [lambda(0), lambda(1)])?,
+            Accuracy::new(second, t, [lambda(0), lambda(1)])?,
+        ])
+    });
+    let mut opts = options.solver.clone();
+    if let Some([a, b]) = &accuracy {
+        opts.tolerance = Some([a.solver_tolerance, b.solver_tolerance].concat());
+        opts.max_chord = Some([a.solver_chord, b.solver_chord].concat());
+    }
+    let coincidence_depth = options.coincidence_depth;
+    let verdict = |cell: &[[f64; 2]], depth: u32| -> BoxVerdict {
+        if same && mirror_dropped(cell, depth) {
+            return BoxVerdict::Drop;
+        }
+        let (lo1, hi1) = params(cell, 0);
+        let (lo2, hi2) = params(cell, 2);
+        if same && depth >= 1 {
+            let lo = [lo1[0].min(lo2[0]), lo1[1].min(lo2[1])];
+            let hi = [hi1[0].max(hi2[0]), hi1[1].max(hi2[1])];
+            if hi[0] - lo[0] <= 0.5 && hi[1] - lo[1] <= 0.5 && sides[0].jets.excludes(lo, hi) {
+                return BoxVerdict::Drop;
+            }
+        }
+        if depth >= coincidence_depth {
+            let a = sides[0].jets.image(lo1, hi1);
+            let b = sides[1].jets.image(lo2, hi2);
+            if !matches!((a, b), (Some(a), Some(b)) if !boxes_meet(&a, &b)) {
+                return BoxVerdict::Unresolved(COINCIDENT_REASON);
+            }
+        }
+        BoxVerdict::Solve
+    };
+    let curve = solve_space_curve_excluding(&eqs, &[], &verdict, &opts);
+    out.boxes = curve.boxes;
+    out.escalations = curve.escalations;
+    out.unresolved = curve
+        .unresolved
+        .iter()
+        .map(|u| {
+            let cell: Vec<[f64; 2]> = (0..4)
+                .map(|k| unwarp_interval(u.cell[k], lambda(k)))
+                .collect();
+            BitangentUnresolved {
+                patches: [i, j],
+                at: centre(&u.cell),
+                cell,
+                reason: u.reason.clone(),
+            }
+        })
+        .collect();
+    if let (Some([a, b]), Some(t)) = (&accuracy, options.tolerance) {
+        let bound = curve
+            .arcs
+            .iter()
+            .map(|arc| Some(a.error(&curve, arc, 0)?.max(b.error(&curve, arc, 2)?)))
+            .try_fold(0.0f64, |m, e| e.map(|e| m.max(e)));
+        out.error_bound = bound;
+        out.within_tolerance = bound.is_some_and(|b| b <= t);
+    }
+    out.branches = branches(&curve, same, &sides, [i, j]);
+    out
+}
+
+/// For a patch with itself: pairs of crossings that are mirror images of each other, `(x, y)`
+/// with `y = σ(x)`: `x` ends a branch away from the boundary (at the border of the dropped
+/// half), `σ(x)` lies in the uniqueness region of the crossing `y` on the mirrored hyperplane,
+/// and `σ(x)` solves the system because the tangents at the second point of `x` are
+/// independent (`proofs/bitangent.md`, Lemma 3).
+fn mirror_pairs(curve: &SpaceCurve, jets: &DiagonalTest) -> Vec<(usize, usize)> {
+    let mut degree = vec![0usize; curve.crossings.len()];
+    for a in &curve.arcs {
+        degree[a.from] += 1;
+        degree[a.to] += 1;
+    }
+    let swap = [2, 3, 0, 1];
+    let mut pairs = Vec::new();
+    for (x, c) in curve.crossings.iter().enumerate() {
+        if degree[x] != 1 || c.on_boundary {
+            continue;
+        }
+        let mirrored: Vec<[f64; 2]> = (0..4).map(|k| c.enclosure[swap[k]]).collect();
+        let axis = swap[c.axis];
+        let face: Vec<[f64; 2]> = mirrored
+            .iter()
+            .enumerate()
+            .filter(|&(k, _)| k != axis)
+            .map(|(_, e)| *e)
+            .collect();
+        let Some(y) = curve.crossings.iter().position(|d| {
+            d.axis == axis
+                && d.at == c.at
+                && face
+                    .iter()
+                    .zip(&d.unique_in)
+                    .all(|(a, b)| b[0] <= a[0] && a[1] <= b[1])
+        }) else {
+            continue;
+        };
+        let (lo, hi) = params(&c.enclosure, 2);
+        if y != x && jets.tangents_independent(lo, hi) && !pairs.contains(&(y, x)) {
+            pairs.push((x, y));
+        }
+    }
+    pairs
+}
+
+/// Chains the solver's arcs (and, for a patch with itself, the mirror joins) into branches of
+/// pairs, each pair once.
+fn branches(
+    curve: &SpaceCurve,
+    same: bool,
+    sides: &[Side; 2],
+    patches: [usize; 2],
+) -> Vec<BitangentBranch> {
+    let mirrors = if same {
+        mirror_pairs(curve, &sides[0].jets)
+    } else {
+        Vec::new()
+    };
+    let mut edges: Vec<(usize, usize)> = curve.arcs.iter().map(|a| (a.from, a.to)).collect();
+    edges.extend(&mirrors);
+    let boundary = |v: usize| curve.crossings[v].on_boundary;
+    let point = |v: usize, flipped: bool| -> BitangentPoint {
+        let t = curve.crossings[v].point();
+        let x: Vec<f64> = (0..4).map(|k| unwarp(t[k], lambda(k))).collect();
+        let (a, b) = if flipped { (2, 0) } else { (0, 2) };
+        let [p, pu, pv] = sides[0].eval.eval(x[a], x[a + 1]);
+        let [q, ..] = sides[1].eval.eval(x[b], x[b + 1]);
+        BitangentPoint {
+            first_uv: [x[a], x[a + 1]],
+            second_uv: [x[b], x[b + 1]],
+            p,
+            q,
+            line: unit_or_zero(std::array::from_fn(|k| q[k] - p[k])),
+            normal: unit_or_zero(cross(pu, pv)),
+        }
+    };
+    chain(&edges, curve.crossings.len(), &boundary)
+        .into_iter()
+        .map(|c| {
+            // Across a mirror join the next crossings are the other order of the same pairs.
+            let mut flipped = false;
+            let mut points = Vec::with_capacity(c.vertices.len());
+            for (k, &v) in c.vertices.iter().enumerate() {
+                if k > 0 {
+                    let u = c.vertices[k - 1];
+                    if mirrors.contains(&(u, v)) || mirrors.contains(&(v, u)) {
+                        flipped = !flipped;
+                        continue;
+                    }
+                }
+                points.push(point(v, flipped));
+            }
+            BitangentBranch {
+                patches,
+                points,
+                closed: c.closed,
+                complete: c.complete,
+            }
+        })
+        .collect()
+}
+
+/// The bitangents of every pair of patches of a model, pairs pruned by their normal cones and
+/// solved in parallel.
+pub fn bitangent_curves(model: &Model, opts: &BitangentOptions) -> BitangentCurves {
+    let patches: Vec<&RationalPatch> = model.patches.iter().map(|p| &p.surface).collect();
+    let cones: Vec<Option<([f64; 3], f64)>> = patches.par_iter().map(|p| normal_cone(p)).collect();
+    let mut todo = Vec::new();
+    let mut pruned = 0;
+    for i in 0..patches.len() {
+        for j in i..patches.len() {
+            if i != j {
+                if let (Some(a), Some(b)) = (&cones[i], &cones[j]) {
+                    if cones_apart(a, b) {
+                        pruned += 1;
+                        continue;
+                    }
+                }
+            }
+            todo.push((i, j));
+        }
+    }
+    let excluded: Vec<bool> = patches
+        .par_iter()
+        .map(|p| DiagonalTest::new(p).excludes([0.0, 0.0], [1.0, 1.0]))
+        .collect();
+    todo.retain(|&(i, j)| i != j || !excluded[i]);
+    let pairs = todo
+        .par_iter()
+        .map(|&(i, j)| pair_bitangents(patches[i], i, patches[j], j, opts))
+        .collect();
+    BitangentCurves {
+        pairs,
+        pruned,
+        excluded_self: excluded.iter().filter(|e| **e).count(),
+        pairs_total: patches.len() * (patches.len() + 1) / 2,
+    }
+}

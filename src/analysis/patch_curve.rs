@@ -1,0 +1,157 @@
+//! What the analyses whose curves live on a patch's parameter square share (flecnodal curves in
+//! `(u, v, direction)`, bitangents in `(u, v, s, t)`): f64 evaluation of the surface and its
+//! tangents at the solver's points, and the accuracy targets that make the drawn polyline lie
+//! within a tolerance of the curve in space (`proofs/space-curves.md` §5).
+
+use super::accuracy::SurfaceBounds;
+use crate::bernstein::Bernstein;
+use crate::number::Rational;
+use crate::number::Precision;
+use crate::solver::curve_n::{SpaceArc, SpaceCurve};
+use crate::surface::RationalPatch;
+
+/// f64 evaluation of a patch and its first partials.
+pub(crate) struct Evaluator {
+    /// X, Y, Z, W and their u and v derivatives.
+    h: Vec<[Bernstein<f64>; 3]>,
+}
+
+impl Evaluator {
+    pub(crate) fn new(patch: &RationalPatch) -> Evaluator {
+        Evaluator {
+            h: patch
+                .homogeneous()
+                .iter()
+                .map(|p| [p, &p.deriv(0), &p.deriv(1)].map(|q| q.convert(Precision::F64)))
+                .collect(),
+        }
+    }
+
+    /// S, S_u, S_v at (u, v).
+    pub(crate) fn eval(&self, u: f64, v: f64) -> [[f64; 3]; 3] {
+        let at: Vec<[f64; 3]> = self
+            .h
+            .iter()
+            .map(|d| [d[0].eval(&[u, v]), d[1].eval(&[u, v]), d[2].eval(&[u, v])])
+            .collect();
+        let w = at[3];
+        let mut out = [[0.0; 3]; 3];
+        for k in 0..3 {
+            let s = at[k][0] / w[0];
+            out[0][k] = s;
+            out[1][k] = (at[k][1] - s * w[1]) / w[0];
+            out[2][k] = (at[k][2] - s * w[2]) / w[0];
+        }
+        out
+    }
+}
+
+/// The largest derivative of the Möbius map of [`crate::solver::curve_n::warp`] with factor
+/// `l` from t to u (λ or 1/λ), and a bound on the magnitude of its second derivative,
+/// `2λ|λ − 1| / min(1, λ)³`.
+fn warp_bounds(l: f64) -> (f64, f64) {
+    let first = l.max(1.0 / l);
+    let second = 2.0 * l * (l - 1.0).abs() / l.min(1.0).powi(3);
+    (first * (1.0 + 1e-12), second * (1.0 + 1e-12))
+}
+
+/// Bounds of a patch's derivatives over its square, and the solver's targets (for the two
+/// variables `(u, v)`, warped by the factors `lambda`) that make every drawn segment lie within
+/// the tolerance of the curve in space.
+pub(crate) struct Accuracy {
+    /// |S_u|, |S_v| over the patch.
+    l: [f64; 2],
+    /// |S_uu|, |S_uv|, |S_vv| over the patch.
+    s2: [f64; 3],
+    /// The warp factors of u and v.
+    lambda: [f64; 2],
+    /// For u and v in the solver's (warped) coordinates.
+    pub(crate) solver_tolerance: [f64; 2],
+    pub(crate) solver_chord: [f64; 2],
+}
+
+impl Accuracy {
+    pub(crate) fn new(patch: &RationalPatch, tol: f64, lambda: [f64; 2]) -> Option<Accuracy> {
+        let b = SurfaceBounds::new(patch);
+        let [lu, suu, suv, svv] = b.bounds([0.0, 0.0], [1.0, 1.0], 0)?;
+        let [lv, ..] = b.bounds([0.0, 0.0], [1.0, 1.0], 1)?;
+        let (du, ddu) = warp_bounds(lambda[0]);
+        let (dv, ddv) = warp_bounds(lambda[1]);
+        // Half the tolerance for the parameter deviation, half for the chords' bulge.
+        let dev = [
+            tol / (4.0 * du * lu.max(1e-300)),
+            tol / (4.0 * dv * lv.max(1e-300)),
+        ];
+        let bulge = ddu * lu + ddv * lv + suu + 2.0 * suv + svv;
+        let c = (4.0 * tol / bulge.max(1e-300)).sqrt();
+        Some(Accuracy {
+            l: [lu, lv],
+            s2: [suu, suv, svv],
+            lambda,
+            solver_tolerance: dev,
+            solver_chord: [c / du, c / dv],
+        })
+    }
+
+    /// The bound on the distance in space between an arc's image (its variables `offset`,
+    /// `offset + 1` are this patch's `(u, v)`) and the segment between its ends' images:
+    /// `Σ L_k (Λ_k dev_k + h_k² |φ_k''| / 8) + (S_uu Δu² + 2 S_uv |Δu Δv| + S_vv Δv²) / 8` with
+    /// `Δ = Λ h` (`proofs/space-curves.md` §5).
+    pub(crate) fn error(&self, c: &SpaceCurve, arc: &SpaceArc, offset: usize) -> Option<f64> {
+        let dev = arc.deviation.as_ref()?;
+        let (a, b) = (
+            &c.crossings[arc.from].enclosure,
+            &c.crossings[arc.to].enclosure,
+        );
+        let h = |k: usize| a[k][1].max(b[k][1]) - a[k][0].min(b[k][0]);
+        let mut e = 0.0;
+        let mut delta = [0.0; 2];
+        for k in 0..2 {
+            let (d1, d2) = warp_bounds(self.lambda[k]);
+            let hk = h(offset + k);
+            e += self.l[k] * (d1 * dev[offset + k] + hk * hk * d2 / 8.0);
+            delta[k] = d1 * hk;
+        }
+        e += (self.s2[0] * delta[0] * delta[0]
+            + 2.0 * self.s2[1] * delta[0] * delta[1]
+            + self.s2[2] * delta[1] * delta[1])
+            / 8.0;
+        // A relative margin for the rounding of this sum.
+        Some(e * (1.0 + 1e-9))
+    }
+}
+
+/// The sides of the parameter square: axis, at 1, name.
+pub(crate) const SIDES: [(usize, bool, &str); 4] = [
+    (0, false, "u=0"),
+    (0, true, "u=1"),
+    (1, false, "v=0"),
+    (1, true, "v=1"),
+];
+
+/// Divides the linear factor of every side on which all the polynomials vanish identically out
+/// of all of them (exactly, as often as it divides all), and names the sides divided.
+pub(crate) fn deflate_common(polys: &mut [Bernstein<Rational>]) -> Vec<&'static str> {
+    let mut divided = Vec::new();
+    for (axis, at_one, name) in SIDES {
+        let mut any = false;
+        loop {
+            let q: Option<Vec<Bernstein<Rational>>> = polys
+                .iter()
+                .map(|p| p.divide_face_factor(axis, at_one))
+                .collect();
+            match q {
+                Some(q) if !polys.iter().all(Bernstein::is_zero) => {
+                    polys.clone_from_slice(&q);
+                    any = true;
+                }
+                _ => break,
+            }
+        }
+        if any {
+            divided.push(name);
+        }
+    }
+    divided
+}
+
