@@ -1,6 +1,10 @@
-//! Bitangent curves against closed forms.
+//! Bitangent curves against closed forms: a double well (a patch with itself, one family of
+//! bitangent planes, both orders of each pair) and two spheres (the cones tangent to both).
 
-use limn::analysis::bitangent_curves::{pair_bitangents, BitangentOptions};
+use limn::analysis::bitangent_curves::{
+    bitangent_curves, pair_bitangents, BitangentOptions, PairBitangents,
+};
+use limn::model::{Format, Model};
 use limn::number::Rational;
 use limn::testing::shapes;
 
@@ -8,30 +12,287 @@ fn q(a: i64, b: i64) -> Rational {
     Rational::from((a, b))
 }
 
-/// z = (x² − 1)² + y² + x y / 2 over [−3/2, 3/2] × [−1, 1]: its only bitangent planes touch at
-/// x = ∓x₀, x₀² = 33/32, with q = p + (2x₀, −x₀/2) (the reduced double well, see the test).
-fn double_well() -> limn::surface::RationalPatch {
-    shapes::graph(
-        &[(4, 0, q(1, 1)), (2, 0, q(-2, 1)), (0, 0, q(1, 1)), (0, 2, q(1, 1)), (1, 1, q(1, 2))],
-        [q(-3, 2), q(3, 2)],
-        [q(-1, 1), q(1, 1)],
-    )
+/// `z = (x² − 1)² + y² + x y / 2` over `[−3/2, 3/2] × [−1, 1]`, or with x and y exchanged.
+///
+/// Its bitangent planes: equal gradients give `Δy = −Δx / 4` and `w'(x') − w'(x) = Δx / 8` for
+/// `w = (x² − 1)²`, and then the chord condition is the bitangent condition of the double well
+/// `w̃ = w − x² / 16` (even, one bitangent): `x = ∓x₀` with `x₀² = 1 + 1/32`, and
+/// `y' = y − x₀ / 2` on the side `x' = +x₀`.
+fn double_well(swap: bool) -> limn::surface::RationalPatch {
+    let terms = [
+        (4, 0, q(1, 1)),
+        (2, 0, q(-2, 1)),
+        (0, 0, q(1, 1)),
+        (0, 2, q(1, 1)),
+        (1, 1, q(1, 2)),
+    ];
+    let (a, b) = ([q(-3, 2), q(3, 2)], [q(-1, 1), q(1, 1)]);
+    if swap {
+        let t: Vec<_> = terms.iter().map(|(i, j, c)| (*j, *i, c.clone())).collect();
+        shapes::graph(&t, b, a)
+    } else {
+        shapes::graph(&terms, a, b)
+    }
+}
+
+fn check_double_well(b: &PairBitangents, swap: bool, tol: f64) {
+    let x0 = (33.0f64 / 32.0).sqrt();
+    // (across, along): the coordinate of the well, and the other.
+    let (w, o) = if swap { (1, 0) } else { (0, 1) };
+    assert!(b.is_certified(), "{} unresolved", b.unresolved.len());
+    assert_eq!(b.branches.len(), 1, "one family, each pair once");
+    let br = &b.branches[0];
+    assert!(br.complete && !br.closed);
+    let mut along = Vec::new();
+    for pt in &br.points {
+        // Soundness: every pair is one of the closed form's, in either order.
+        let (m, p) = if pt.p[w] < 0.0 {
+            (pt.p, pt.q)
+        } else {
+            (pt.q, pt.p)
+        };
+        assert!((m[w] + x0).abs() < tol && (p[w] - x0).abs() < tol, "{pt:?}");
+        assert!((p[o] - (m[o] - x0 / 2.0)).abs() < tol, "{pt:?}");
+        assert!((p[2] - m[2]).abs() < tol, "{pt:?}");
+        along.push(m[o]);
+    }
+    // Completeness: the family runs from the point whose partner is on the side o = −1 to the
+    // side o = 1, with no gap longer than the solver's boxes allow.
+    along.sort_by(f64::total_cmp);
+    assert!((along[0] - (-1.0 + x0 / 2.0)).abs() < tol, "{}", along[0]);
+    assert!((along[along.len() - 1] - 1.0).abs() < tol);
+    assert!(along.windows(2).all(|w| w[1] - w[0] < 0.25));
 }
 
 #[test]
-fn double_well_has_one_bitangent_family() {
-    let p = double_well();
-    let t = std::time::Instant::now();
-    let b = pair_bitangents(&p, 0, &p, 0, &BitangentOptions::default());
-    eprintln!("{:?} boxes {} branches {} unresolved {}", t.elapsed(), b.boxes, b.branches.len(), b.unresolved.len());
-    for u in b.unresolved.iter().take(10) {
-        eprintln!("{:?} {}", u.cell, u.reason);
+fn double_well_has_one_family_reported_once() {
+    for swap in [false, true] {
+        let p = double_well(swap);
+        let b = pair_bitangents(&p, 0, &p, 0, &BitangentOptions::default());
+        eprintln!(
+            "swap {swap}: {} boxes, {} points",
+            b.boxes,
+            b.branches.iter().map(|b| b.points.len()).sum::<usize>()
+        );
+        check_double_well(&b, swap, 1e-6);
     }
-    for br in &b.branches {
-        eprintln!("branch closed {} complete {} n {}", br.closed, br.complete, br.points.len());
-        for pt in &br.points {
-            eprintln!("  p {:?} q {:?}", pt.p, pt.q);
+}
+
+#[test]
+fn double_well_within_tolerance() {
+    let p = double_well(true);
+    let b = pair_bitangents(&p, 0, &p, 0, &BitangentOptions::with_tolerance(Some(1e-3)));
+    eprintln!("tol: {} boxes, bound {:?}", b.boxes, b.error_bound);
+    assert!(b.within_tolerance, "{:?}", b.error_bound);
+    check_double_well(&b, true, 1e-6);
+}
+
+#[test]
+fn a_convex_patch_has_no_bitangent() {
+    let p = shapes::graph(
+        &[(2, 0, q(1, 1)), (0, 2, q(1, 1)), (1, 1, q(1, 3))],
+        [q(-1, 1), q(1, 1)],
+        [q(-1, 1), q(2, 1)],
+    );
+    let b = pair_bitangents(&p, 0, &p, 0, &BitangentOptions::default());
+    assert!(b.is_certified() && b.branches.is_empty());
+}
+
+/// The sphere of radius 1/2 about (3, 1, 2), turned so that its patches' sides are in general
+/// position with respect to the unit sphere's.
+fn second_sphere() -> Vec<limn::surface::RationalPatch> {
+    let zero = [q(0, 1), q(0, 1), q(0, 1)];
+    shapes::sphere(&q(1, 2))
+        .iter()
+        .map(|p| {
+            let p = shapes::transform(p, &shapes::rotation(1, 2, 1), &zero);
+            shapes::transform(&p, &shapes::rotation(2, 3, 1), &[q(3, 1), q(1, 1), q(2, 1)])
+        })
+        .collect()
+}
+
+/// Two spheres, radii 1 and 1/2, centres 0 and (3, 1, 2)/... : the common tangent planes touch
+/// along two circles on each sphere (the outer cone: `n·e = (r₁ − r₂)/d`, `q = c₂ + r₂ n`; the
+/// inner: `n·e = (r₁ + r₂)/d`, `q = c₂ − r₂ n`).
+#[test]
+fn two_spheres_bitangents_are_the_tangent_cones() {
+    let (r1, r2) = (1.0, 0.5);
+    let c2 = [3.0, 1.0, 2.0];
+    let a = shapes::sphere(&q(1, 1));
+    let b = second_sphere();
+    let model = Model::from_patches(Format::Json, a.into_iter().chain(b).collect());
+    let tol = 1e-2;
+    let t = std::time::Instant::now();
+    let out = bitangent_curves(&model, &BitangentOptions::with_tolerance(Some(tol)));
+    eprintln!(
+        "{:?}: {} pairs solved, {} pruned, {} excluded whole",
+        t.elapsed(),
+        out.pairs.len(),
+        out.pruned,
+        out.excluded_self
+    );
+    let d = (c2.iter().map(|x| x * x).sum::<f64>()).sqrt();
+    let e = c2.map(|x| x / d);
+    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    // Soundness: every pair is a common tangent plane's, and on one sphere there is none.
+    let mut segments: [Vec<([f64; 3], [f64; 3])>; 2] = [Vec::new(), Vec::new()];
+    for pair in &out.pairs {
+        let across = pair.patches[0] < 8 && pair.patches[1] >= 8;
+        if !across {
+            assert!(pair.branches.is_empty(), "{:?}", pair.patches);
+            // What is left on one sphere is where its patches meet: the shared sides and poles.
+            for u in &pair.unresolved {
+                assert!(
+                    u.reason.contains("meet in space"),
+                    "{:?}: {}",
+                    pair.patches,
+                    u.reason
+                );
+            }
+            continue;
+        }
+        assert!(pair.is_certified(), "{:?}", pair.patches);
+        assert!(
+            pair.within_tolerance,
+            "{:?}: {:?}",
+            pair.patches, pair.error_bound
+        );
+        for br in &pair.branches {
+            for pt in &br.points {
+                let n = pt.p.map(|x| x / r1);
+                let ne = dot(n, e);
+                let along = |s: f64| (0..3).all(|k| (c2[k] + s * r2 * n[k] - pt.q[k]).abs() < 1e-6);
+                let kind = if (ne - (r1 - r2) / d).abs() < 1e-6 && along(1.0) {
+                    0
+                } else if (ne - (r1 + r2) / d).abs() < 1e-6 && along(-1.0) {
+                    1
+                } else {
+                    panic!("not a common tangent plane: {pt:?}");
+                };
+                let _ = kind;
+            }
+            for w in br.points.windows(2) {
+                let k = if (dot(w[0].p, e) - (r1 - r2) / d).abs() < 1e-6 {
+                    0
+                } else {
+                    1
+                };
+                segments[k].push((w[0].p, w[1].p));
+            }
         }
     }
-    assert!(b.is_certified());
+    // Completeness: both circles of contact on the first sphere are covered by the drawn
+    // segments, within the tolerance (sampled every 5 degrees).
+    let dist = |x: [f64; 3], (a, b): ([f64; 3], [f64; 3])| {
+        let ab: [f64; 3] = std::array::from_fn(|k| b[k] - a[k]);
+        let ax: [f64; 3] = std::array::from_fn(|k| x[k] - a[k]);
+        let t = (dot(ax, ab) / dot(ab, ab).max(1e-300)).clamp(0.0, 1.0);
+        let p: [f64; 3] = std::array::from_fn(|k| a[k] + t * ab[k] - x[k]);
+        dot(p, p).sqrt()
+    };
+    let f1 = {
+        let h = if e[0].abs() < 0.9 {
+            [1.0, 0.0, 0.0]
+        } else {
+            [0.0, 1.0, 0.0]
+        };
+        let c = dot(h, e);
+        let v: [f64; 3] = std::array::from_fn(|k| h[k] - c * e[k]);
+        let l = dot(v, v).sqrt();
+        v.map(|x| x / l)
+    };
+    let f2 = [
+        e[1] * f1[2] - e[2] * f1[1],
+        e[2] * f1[0] - e[0] * f1[2],
+        e[0] * f1[1] - e[1] * f1[0],
+    ];
+    for (k, c) in [(r1 - r2) / d, (r1 + r2) / d].into_iter().enumerate() {
+        let s = (1.0 - c * c).sqrt();
+        for i in 0..72 {
+            let a = i as f64 * std::f64::consts::PI / 36.0;
+            let n: [f64; 3] =
+                std::array::from_fn(|j| c * e[j] + s * (a.cos() * f1[j] + a.sin() * f2[j]));
+            let p = n.map(|x| x * r1);
+            let near = segments[k]
+                .iter()
+                .map(|&sg| dist(p, sg))
+                .fold(f64::INFINITY, f64::min);
+            assert!(near <= tol, "circle {k} at {a}: {near}");
+        }
+    }
+}
+
+#[test]
+#[ignore]
+fn debug_pair() {
+    let a = shapes::sphere(&q(1, 1));
+    let b = second_sphere();
+    let mut o = BitangentOptions::default();
+    o.solver.max_depth = std::env::var("DEPTH")
+        .map(|d| d.parse().unwrap())
+        .unwrap_or(12);
+    o.solver.face.max_depth = std::env::var("FDEPTH")
+        .map(|d| d.parse().unwrap())
+        .unwrap_or(5);
+    o.solver.face.max_boxes = std::env::var("FBOXES")
+        .map(|d| d.parse().unwrap())
+        .unwrap_or(64);
+    let out = pair_bitangents(&a[7], 7, &b[2], 10, &o);
+    eprintln!("boxes {}", out.boxes);
+    let mut reasons = std::collections::BTreeMap::new();
+    for u in &out.unresolved {
+        *reasons.entry(u.reason.clone()).or_insert(0) += 1;
+    }
+    eprintln!("{reasons:#?}");
+    for u in out.unresolved.iter().take(5) {
+        eprintln!("{:?} {:?}", u.cell, u.at);
+    }
+    for br in out.branches.iter().take(5) {
+        eprintln!(
+            "{} {} {:?}",
+            br.complete,
+            br.points.len(),
+            br.points.first().map(|p| (p.first_uv, p.second_uv))
+        );
+        for p in br
+            .points
+            .iter()
+            .filter(|p| (p.first_uv[0] - 0.1505).abs() < 1e-3)
+        {
+            eprintln!(
+                "   {:?} {:?} p {:?} q {:?}",
+                p.first_uv, p.second_uv, p.p, p.q
+            );
+        }
+    }
+}
+
+#[test]
+#[ignore]
+fn debug_pairs_cost() {
+    let a = shapes::sphere(&q(1, 1));
+    let b = second_sphere();
+    let all: Vec<_> = a.into_iter().chain(b).collect();
+    let tol: Option<f64> = std::env::var("TOL").ok().map(|t| t.parse().unwrap());
+    let o = BitangentOptions::with_tolerance(tol);
+    let mut rows = Vec::new();
+    for i in 0..16 {
+        for j in i..16 {
+            let t = std::time::Instant::now();
+            let r = pair_bitangents(&all[i], i, &all[j], j, &o);
+            rows.push((
+                t.elapsed().as_secs_f64(),
+                i,
+                j,
+                r.boxes,
+                r.branches.len(),
+                r.unresolved.len(),
+            ));
+        }
+    }
+    rows.sort_by(|a, b| b.0.total_cmp(&a.0));
+    for r in rows.iter().take(12) {
+        eprintln!("{r:?}");
+    }
+    eprintln!("total {}", rows.iter().map(|r| r.0).sum::<f64>());
 }

@@ -63,7 +63,10 @@ fn dot(a: &[Poly; 3], b: &[Poly; 3]) -> Poly {
 /// let at = [half.clone(), Rational::from((1, 3)), half, Rational::from((1, 3))];
 /// assert!(f.iter().all(|f| f.eval(&at) == q(0)));
 /// ```
-pub fn bitangent_system(first: &RationalPatch, second: &RationalPatch) -> ([Poly; 3], Vec<&'static str>) {
+pub fn bitangent_system(
+    first: &RationalPatch,
+    second: &RationalPatch,
+) -> ([Poly; 3], Vec<&'static str>) {
     let (n, sides) = deflated_normal(first);
     let (ts, tt) = deflated_tangents(second);
     let hp = first.homogeneous();
@@ -162,8 +165,11 @@ impl DiagonalTest {
         let Some(h): Option<Vec<IPoly>> = self.h.iter().map(restrict).collect() else {
             return false;
         };
-        let Some(n): Option<Vec<Interval>> =
-            self.normal.iter().map(|p| restrict(p).map(|q| hull(&q))).collect()
+        let Some(n): Option<Vec<Interval>> = self
+            .normal
+            .iter()
+            .map(|p| restrict(p).map(|q| hull(&q)))
+            .collect()
         else {
             return false;
         };
@@ -197,13 +203,17 @@ impl DiagonalTest {
                     .iter()
                     .zip(dw.coeffs())
                     .map(|(x, w)| x.sub(&c.mul(w)))
-                    .fold(None, |a: Option<Interval>, b| Some(a.map_or(b, |a| a.hull(&b))));
+                    .fold(None, |a: Option<Interval>, b| {
+                        Some(a.map_or(b, |a| a.hull(&b)))
+                    });
                 let Some(y) = y else { return false };
                 acc = acc.add(&y.mul(&n[k]));
             }
             *ga = acc;
         }
-        [false, true].iter().all(|&along_v| sectors_excluded(&g, along_v))
+        [false, true]
+            .iter()
+            .all(|&along_v| sectors_excluded(&g, along_v))
     }
 }
 
@@ -252,7 +262,10 @@ fn sector_excluded(g: &[Interval; 7], along_v: bool, sigma: Interval) -> bool {
     let s2 = if sigma.lo() >= 0.0 || sigma.hi() <= 0.0 {
         sigma.mul(&sigma)
     } else {
-        Interval::new(0.0, sigma.lo().abs().max(sigma.hi().abs()).powi(2) * (1.0 + 1e-15))
+        Interval::new(
+            0.0,
+            sigma.lo().abs().max(sigma.hi().abs()).powi(2) * (1.0 + 1e-15),
+        )
     };
     let s3 = s2.mul(&sigma);
     let (h0, h1, c) = if along_v {
@@ -295,6 +308,5 @@ fn morton(lo: [f64; 2], depth: u32) -> u64 {
 /// kept half onto the dropped one except on the cells of equal code, which are kept
 /// (`proofs/bitangent.md`, Lemma 2).
 pub fn mirror_dropped(cell: &[[f64; 2]], depth: u32) -> bool {
-    depth <= 30
-        && morton([cell[0][0], cell[1][0]], depth) > morton([cell[2][0], cell[3][0]], depth)
+    depth <= 30 && morton([cell[0][0], cell[1][0]], depth) > morton([cell[2][0], cell[3][0]], depth)
 }

@@ -45,20 +45,23 @@ impl Default for BitangentOptions {
 }
 
 impl BitangentOptions {
-    /// The defaults for a model: per pair 20,000 boxes to depth 12 for the topology; with a
-    /// tolerance 100,000 to depth 16.
+    /// The defaults for a model: per pair 20,000 boxes for the topology, 100,000 with a
+    /// tolerance, to depth 20 (a curve that turns very near a grid plane needs small boxes
+    /// there; on two spheres one such turn needed depth 17).
     pub fn with_tolerance(tolerance: Option<f64>) -> BitangentOptions {
-        let (max_depth, max_boxes) = if tolerance.is_some() {
-            (16, 100_000)
-        } else {
-            (12, 20_000)
+        let max_depth = 20;
+        let max_boxes = if tolerance.is_some() { 100_000 } else { 20_000 };
+        let mut solver = SpaceCurveOptions {
+            max_depth,
+            max_boxes,
+            ..SpaceCurveOptions::default()
         };
+        // The faces are 3-dimensional: room for two levels of their subdivision and part of a
+        // third (a curve crossing a face at a shallow angle needs it; with 64 boxes, two
+        // spheres took 5 times as many boxes).
+        solver.face.max_boxes = 256;
         BitangentOptions {
-            solver: SpaceCurveOptions {
-                max_depth,
-                max_boxes,
-                ..SpaceCurveOptions::default()
-            },
+            solver,
             tolerance,
             coincidence_depth: 4,
         }
@@ -161,12 +164,16 @@ impl BitangentCurves {
     }
 }
 
-/// The Möbius factors of [`warp`] for `(u, v)` and the same for `(s, t)` (the same grid for
-/// both points, so that a pair and its mirror image fall on the same grid planes).
-const WARP: [(i64, i64); 2] = [(33, 32), (29, 32)];
+/// The Möbius factors of [`warp`] for `(u, v, s, t)`. A patch with itself takes the first two
+/// for both points (the same grid for both, so that a pair and its mirror image fall on the same
+/// grid planes); two patches take all four, so that a curve with `v = t` (two patches
+/// parameterized alike) does not run along the grid's edges.
+const WARP: [(i64, i64); 4] = [(33, 32), (29, 32), (31, 32), (35, 32)];
 
-fn lambda(k: usize) -> f64 {
-    WARP[k % 2].0 as f64 / WARP[k % 2].1 as f64
+/// The warp factor of variable `k` (for a patch with itself, the second pair repeats the first).
+fn lambda(same: bool, k: usize) -> f64 {
+    let k = if same { k % 2 } else { k };
+    WARP[k].0 as f64 / WARP[k].1 as f64
 }
 
 const COINCIDENT_REASON: &str = "the two pieces may meet in space (a shared side, a pole or an \
@@ -176,6 +183,11 @@ const COINCIDENT_REASON: &str = "the two pieces may meet in space (a shared side
 /// normals are positive combinations of the coefficient vectors of the deflated normal).
 pub fn normal_cone(patch: &RationalPatch) -> Option<([f64; 3], f64)> {
     let (n, _) = deflated_normal(patch);
+    // The coordinates at one degree, so that their coefficients pair up.
+    let d: Vec<usize> = (0..2)
+        .map(|a| n.iter().map(|p| p.degrees()[a]).max().unwrap_or(0))
+        .collect();
+    let n = n.map(|p| p.elevate_to(&d));
     let vecs: Vec<[f64; 3]> = (0..n[0].coeffs().len())
         .map(|i| std::array::from_fn(|k| n[k].coeffs()[i].to_f64()))
         .filter(|v: &[f64; 3]| v.iter().any(|x| *x != 0.0))
@@ -238,9 +250,9 @@ struct Side {
 }
 
 /// The real parameter box of a solver box's variables `offset, offset + 1`.
-fn params(cell: &[[f64; 2]], offset: usize) -> ([f64; 2], [f64; 2]) {
-    let a = unwarp_interval(cell[offset], lambda(0));
-    let b = unwarp_interval(cell[offset + 1], lambda(1));
+fn params(same: bool, cell: &[[f64; 2]], offset: usize) -> ([f64; 2], [f64; 2]) {
+    let a = unwarp_interval(cell[offset], lambda(same, offset));
+    let b = unwarp_interval(cell[offset + 1], lambda(same, offset + 1));
     ([a[0], b[0]], [a[1], b[1]])
 }
 
@@ -286,7 +298,7 @@ pub fn pair_bitangents(
     };
     let centre = |cell: &[[f64; 2]]| -> [[f64; 3]; 2] {
         std::array::from_fn(|k| {
-            let (lo, hi) = params(cell, 2 * k);
+            let (lo, hi) = params(same, cell, 2 * k);
             sides[k]
                 .eval
                 .eval(0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]))[0]
@@ -309,13 +321,13 @@ pub fn pair_bitangents(
     let (eqs, divided) = bitangent_system(first, second);
     out.divided_sides = divided;
     let lambdas: Vec<Rational> = (0..4)
-        .map(|k| Rational::from(WARP[k % 2]))
+        .map(|k| Rational::from(WARP[if same { k % 2 } else { k }]))
         .collect();
     let eqs: Vec<_> = eqs.iter().map(|p| warp(p, &lambdas)).collect();
     let accuracy: Option<[Accuracy; 2]> = options.tolerance.and_then(|t| {
         Some([
-            Accuracy::new(first, t, [lambda(0), lambda(1)])?,
-            Accuracy::new(second, t, [lambda(0), lambda(1)])?,
+            Accuracy::new(first, t, [lambda(same, 0), lambda(same, 1)])?,
+            Accuracy::new(second, t, [lambda(same, 2), lambda(same, 3)])?,
         ])
     });
     let mut opts = options.solver.clone();
@@ -328,8 +340,8 @@ pub fn pair_bitangents(
         if same && mirror_dropped(cell, depth) {
             return BoxVerdict::Drop;
         }
-        let (lo1, hi1) = params(cell, 0);
-        let (lo2, hi2) = params(cell, 2);
+        let (lo1, hi1) = params(same, cell, 0);
+        let (lo2, hi2) = params(same, cell, 2);
         if same && depth >= 1 {
             let lo = [lo1[0].min(lo2[0]), lo1[1].min(lo2[1])];
             let hi = [hi1[0].max(hi2[0]), hi1[1].max(hi2[1])];
@@ -354,7 +366,7 @@ pub fn pair_bitangents(
         .iter()
         .map(|u| {
             let cell: Vec<[f64; 2]> = (0..4)
-                .map(|k| unwarp_interval(u.cell[k], lambda(k)))
+                .map(|k| unwarp_interval(u.cell[k], lambda(same, k)))
                 .collect();
             BitangentUnresolved {
                 patches: [i, j],
@@ -412,7 +424,7 @@ fn mirror_pairs(curve: &SpaceCurve, jets: &DiagonalTest) -> Vec<(usize, usize)> 
         }) else {
             continue;
         };
-        let (lo, hi) = params(&c.enclosure, 2);
+        let (lo, hi) = params(true, &c.enclosure, 2);
         if y != x && jets.tangents_independent(lo, hi) && !pairs.contains(&(y, x)) {
             pairs.push((x, y));
         }
@@ -438,7 +450,7 @@ fn branches(
     let boundary = |v: usize| curve.crossings[v].on_boundary;
     let point = |v: usize, flipped: bool| -> BitangentPoint {
         let t = curve.crossings[v].point();
-        let x: Vec<f64> = (0..4).map(|k| unwarp(t[k], lambda(k))).collect();
+        let x: Vec<f64> = (0..4).map(|k| unwarp(t[k], lambda(same, k))).collect();
         let (a, b) = if flipped { (2, 0) } else { (0, 2) };
         let [p, pu, pv] = sides[0].eval.eval(x[a], x[a + 1]);
         let [q, ..] = sides[1].eval.eval(x[b], x[b + 1]);

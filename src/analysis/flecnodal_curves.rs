@@ -9,9 +9,9 @@
 //! identically zero: planes, cylinders, cones) is flecnodal everywhere along its rulings: it is
 //! reported as degenerate, not solved.
 
-use super::patch_curve::{Accuracy, Evaluator, SIDES};
 use super::flecnodal::{flecnodal_system, Chart};
 use super::parabolic::parabolic_function;
+use super::patch_curve::{Accuracy, Evaluator, SIDES};
 use super::projection::lift;
 use crate::bernstein::Bernstein;
 use crate::model::Model;
@@ -164,7 +164,6 @@ fn warp_f64(k: usize) -> f64 {
     WARP[k].0 as f64 / WARP[k].1 as f64
 }
 
-
 /// The system with the linear factors of the sides on which both polynomials vanish for
 /// every direction divided out (exactly, as often as they divide), and the sides divided.
 fn deflate(mut eqs: [Poly; 2]) -> ([Poly; 2], Vec<&'static str>) {
@@ -186,7 +185,6 @@ fn deflate(mut eqs: [Poly; 2]) -> ([Poly; 2], Vec<&'static str>) {
     }
     (eqs, divided)
 }
-
 
 /// A point of the curve from a crossing of the solver in a chart.
 fn flecnodal_point(eval: &Evaluator, chart: Chart, c: &SpaceCrossing) -> FlecnodalPoint {
@@ -302,7 +300,11 @@ pub fn patch_flecnodal(
         .and_then(|t| Accuracy::new(patch, t, [warp_f64(0), warp_f64(1)]));
     let mut opts = options.solver.clone();
     if let Some(a) = &accuracy {
-        opts.tolerance = Some(vec![a.solver_tolerance[0], a.solver_tolerance[1], f64::INFINITY]);
+        opts.tolerance = Some(vec![
+            a.solver_tolerance[0],
+            a.solver_tolerance[1],
+            f64::INFINITY,
+        ]);
         opts.max_chord = Some(vec![a.solver_chord[0], a.solver_chord[1], f64::INFINITY]);
     }
     let opts = &opts;

@@ -5,8 +5,8 @@
 
 use super::accuracy::SurfaceBounds;
 use crate::bernstein::Bernstein;
-use crate::number::Rational;
 use crate::number::Precision;
+use crate::number::Rational;
 use crate::solver::curve_n::{SpaceArc, SpaceCurve};
 use crate::surface::RationalPatch;
 
@@ -154,4 +154,3 @@ pub(crate) fn deflate_common(polys: &mut [Bernstein<Rational>]) -> Vec<&'static 
     }
     divided
 }
-

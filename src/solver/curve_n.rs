@@ -878,7 +878,12 @@ pub fn solve_space_curve_where(
     nonpositive: &[Bernstein<Rational>],
     opts: &SpaceCurveOptions,
 ) -> SpaceCurve {
-    solve_space_curve_excluding(eqs, nonpositive, &|_: &[[f64; 2]], _: u32| BoxVerdict::Solve, opts)
+    solve_space_curve_excluding(
+        eqs,
+        nonpositive,
+        &|_: &[[f64; 2]], _: u32| BoxVerdict::Solve,
+        opts,
+    )
 }
 
 /// What a caller says of a box before the solver examines it (see
