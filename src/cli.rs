@@ -2,6 +2,8 @@
 //! something can print JSON (`--format json`) whose field names are documented in README.
 
 use crate::analysis::baseline::{baseline_silhouette, BaselineMethod};
+use crate::analysis::bitangent_curves::{bitangent_curves, BitangentOptions};
+use crate::analysis::bitangent_report::BitangentReport;
 use crate::analysis::flecnodal_curves::{flecnodal_curves, FlecnodalOptions};
 use crate::analysis::flecnodal_report::FlecnodalReport;
 use crate::analysis::hlr::{hidden_lines, HlrOptions, HlrReport};
@@ -80,7 +82,7 @@ enum Command {
     },
     /// Curves on a model that do not depend on a view, with certified topology (and accuracy
     /// with --tol): `parabolic` (Gaussian curvature zero), `flecnodal` (an asymptotic tangent
-    /// line with 4-point contact).
+    /// line with 4-point contact), `bitangent` (pairs of points with one tangent plane).
     Curves {
         /// The model file.
         model: PathBuf,
@@ -214,6 +216,7 @@ enum Method {
 enum CurveKind {
     Parabolic,
     Flecnodal,
+    Bitangent,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -421,6 +424,27 @@ where
                 let ms = start.elapsed().as_secs_f64() * 1e3;
                 let report =
                     FlecnodalReport::new(&name, &r, tol_abs, ms, pool.current_num_threads());
+                let text = match format {
+                    CurveFormat::Json => pretty_json(&report)?,
+                    CurveFormat::Text => report.text(),
+                    CurveFormat::Svg => report.svg(&m, &projection),
+                    CurveFormat::Obj => report.obj(),
+                };
+                return write_output(run.output, &text, out);
+            }
+            if kind == CurveKind::Bitangent {
+                let defaults = BitangentOptions::with_tolerance(tol_abs);
+                let bopts = BitangentOptions {
+                    solver: SpaceCurveOptions {
+                        deadline: opts.deadline,
+                        ..defaults.solver.clone()
+                    },
+                    ..defaults
+                };
+                let r = pool.install(|| bitangent_curves(&m, &bopts));
+                let ms = start.elapsed().as_secs_f64() * 1e3;
+                let report =
+                    BitangentReport::new(&name, &r, tol_abs, ms, pool.current_num_threads());
                 let text = match format {
                     CurveFormat::Json => pretty_json(&report)?,
                     CurveFormat::Text => report.text(),

@@ -76,7 +76,7 @@ fn svg_output_and_no_overwrite() {
 #[test]
 fn bad_arguments_are_exit_2_with_one_line() {
     for args in [
-        &["curves", TEAPOT, "--kind", "bitangent"][..],
+        &["curves", TEAPOT, "--kind", "bitangents"][..],
         &["curves", TEAPOT][..],
         &["curves", TEAPOT, "--kind", "flecnodal", "--tol", "0"][..],
         &["curves", TEAPOT, "--kind", "parabolic", "--tol", "-1"][..],
@@ -171,15 +171,16 @@ fn parabolic_curves_of_every_patch_fixture() {
     }
 }
 
-/// The graph z = xy + (x³ + y³)/6 over [0, 5/2] × [0, 3] as a JSON model (exact coordinates):
-/// its only flecnodal curve is the segment x + y = 2.
-fn cubic_graph_model() -> PathBuf {
-    let q = |n: i64, d: i64| limn::number::Rational::from((n, d));
-    let p = limn::testing::shapes::graph(
-        &[(1, 1, q(1, 1)), (3, 0, q(1, 6)), (0, 3, q(1, 6))],
-        [q(0, 1), q(5, 2)],
-        [q(0, 1), q(3, 1)],
-    );
+/// A graph patch `z = Σ c xⁱ yʲ` over a rectangle as a JSON model (exact coordinates).
+fn graph_model(
+    name: &str,
+    terms: &[(usize, usize, (i64, i64))],
+    x: [(i64, i64); 2],
+    y: [(i64, i64); 2],
+) -> PathBuf {
+    let q = |(n, d): (i64, i64)| limn::number::Rational::from((n, d));
+    let terms: Vec<_> = terms.iter().map(|&(i, j, c)| (i, j, q(c))).collect();
+    let p = limn::testing::shapes::graph(&terms, x.map(q), y.map(q));
     let pts: Vec<String> = p
         .points()
         .iter()
@@ -190,9 +191,20 @@ fn cubic_graph_model() -> PathBuf {
         r#"{{"patches":[{{"kind":"bezier","degree":[{m},{n}],"points":[{}]}}]}}"#,
         pts.join(",")
     );
-    let path = tmp("cubic_graph.json");
+    let path = tmp(name);
     std::fs::write(&path, text).unwrap();
     path
+}
+
+/// The graph z = xy + (x³ + y³)/6 over [0, 5/2] × [0, 3]: its only flecnodal curve is the
+/// segment x + y = 2.
+fn cubic_graph_model() -> PathBuf {
+    graph_model(
+        "cubic_graph.json",
+        &[(1, 1, (1, 1)), (3, 0, (1, 6)), (0, 3, (1, 6))],
+        [(0, 1), (5, 2)],
+        [(0, 1), (3, 1)],
+    )
 }
 
 #[test]
@@ -279,4 +291,96 @@ fn flecnodal_of_a_plane_is_degenerate() {
     assert_eq!(r["certified"], false);
     assert_eq!(r["degenerate"].as_array().unwrap().len(), 1);
     assert!(r["curves"].as_array().unwrap().is_empty());
+}
+
+/// The double well z = (x² − 1)² + y² + xy/2 over [−3/2, 3/2] × [−1, 1]: one family of
+/// bitangent planes, touching at x = ∓√(33/32) (tests/bitangent_curves.rs).
+#[test]
+fn bitangent_json_contract_and_formats() {
+    let model = graph_model(
+        "double_well.json",
+        &[
+            (4, 0, (1, 1)),
+            (2, 0, (-2, 1)),
+            (0, 0, (1, 1)),
+            (0, 2, (1, 1)),
+            (1, 1, (1, 2)),
+        ],
+        [(-3, 2), (3, 2)],
+        [(-1, 1), (1, 1)],
+    );
+    let m = model.to_str().unwrap();
+    let (code, out, err) = limn(&[
+        "curves",
+        m,
+        "--kind",
+        "bitangent",
+        "--format",
+        "json",
+        "--tol",
+        "1e-2",
+    ]);
+    assert_eq!(code, Some(0), "{err}");
+    let r: Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(r["kind"], "bitangent");
+    assert_eq!(r["certified"], true, "{out}");
+    assert!(r["error_bound"].as_f64().unwrap() <= r["tolerance"].as_f64().unwrap());
+    let curves = r["curves"].as_array().unwrap();
+    assert_eq!(curves.len(), 1, "each pair once");
+    let c = &curves[0];
+    assert_eq!(c["complete"], true);
+    assert_eq!(c["patches"], serde_json::json!([0, 0]));
+    let n = c["points"].as_array().unwrap().len();
+    for field in [
+        "points_second",
+        "points_uv",
+        "points_uv_second",
+        "lines",
+        "normals",
+    ] {
+        assert_eq!(c[field].as_array().unwrap().len(), n, "{field}");
+    }
+    let x0 = (33.0f64 / 32.0).sqrt();
+    for (p, q) in c["points"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .zip(c["points_second"].as_array().unwrap())
+    {
+        let (a, b) = (p[0].as_f64().unwrap(), q[0].as_f64().unwrap());
+        assert!(
+            (a.abs() - x0).abs() < 1e-6 && (a + b).abs() < 1e-6,
+            "{p} {q}"
+        );
+    }
+    assert!(r["unresolved"].as_array().unwrap().is_empty());
+    assert_eq!(r["stats"]["pairs"], 1);
+    assert_eq!(r["stats"]["pairs_solved"], 1);
+    // Text, SVG and OBJ.
+    let (code, out, _) = limn(&["curves", m, "--kind", "bitangent"]);
+    assert_eq!(code, Some(0));
+    assert!(
+        out.contains("1 bitangent curves") && out.contains("certified"),
+        "{out}"
+    );
+    let (code, out, _) = limn(&["curves", m, "--kind", "bitangent", "--format", "svg"]);
+    assert_eq!(code, Some(0));
+    assert!(out.starts_with("<svg") || out.starts_with("<?xml"));
+    let (code, out, _) = limn(&["curves", m, "--kind", "bitangent", "--format", "obj"]);
+    assert_eq!(code, Some(0));
+    assert_eq!(out.lines().filter(|l| l.starts_with("l ")).count(), 2);
+}
+
+#[test]
+fn bitangent_with_a_time_limit_is_not_certified() {
+    common::time_limited(&[
+        "curves",
+        TEAPOT,
+        "--kind",
+        "bitangent",
+        "--time-limit",
+        "0",
+        "--format",
+        "json",
+    ]);
 }

@@ -94,6 +94,8 @@ pub struct DiagonalTest {
     /// Per coordinate: uu, uv, vv, then uuu, uuv, uvv, vvv.
     d: Vec<[IPoly; 7]>,
     normal: [IPoly; 3],
+    /// ν_u and ν_v.
+    normal_d: [[IPoly; 3]; 2],
     tangents: [[IPoly; 3]; 2],
 }
 
@@ -126,6 +128,7 @@ impl DiagonalTest {
         DiagonalTest {
             h: hom.iter().map(f).collect(),
             d,
+            normal_d: [0, 1].map(|a| n.clone().map(|p| f(&p.deriv(a)))),
             normal: n.map(|p| f(&p)),
             tangents: [tu.map(|p| f(&p)), tv.map(|p| f(&p))],
         }
@@ -140,6 +143,53 @@ impl DiagonalTest {
             .map(|p| restrict_enclosing(p, lo, hi))
             .collect::<Option<_>>()?;
         image_of(&h)
+    }
+
+    /// The ranges of the normal `ν` over the box `[lo, hi]`.
+    pub fn normal_range(&self, lo: [f64; 2], hi: [f64; 2]) -> Option<[Interval; 3]> {
+        let r: Vec<Interval> = self
+            .normal
+            .iter()
+            .map(|p| restrict_enclosing(p, lo, hi).map(|q| hull(&q)))
+            .collect::<Option<_>>()?;
+        Some([r[0], r[1], r[2]])
+    }
+
+    /// An interval matrix that contains the Jacobian (rows: the chart's two coordinates;
+    /// columns: u, v) of the Gauss chart `g = (ν·e₁, ν·e₂) / (ν·a)` over the box `[lo, hi]`,
+    /// for the orthonormal frame `[a, e₁, e₂]`; `None` where `ν·a` may vanish.
+    pub fn gauss_jacobian(
+        &self,
+        lo: [f64; 2],
+        hi: [f64; 2],
+        frame: &[[f64; 3]; 3],
+    ) -> Option<[[Interval; 2]; 2]> {
+        let n = self.normal_range(lo, hi)?;
+        let along = |v: &[Interval; 3], e: &[f64; 3]| {
+            (0..3).fold(Interval::point(0.0), |acc, k| {
+                acc.add(&v[k].mul(&Interval::point(e[k])))
+            })
+        };
+        let na = along(&n, &frame[0]);
+        let na2 = na.mul(&na);
+        if na.contains(0.0) {
+            return None;
+        }
+        let mut jac = [[Interval::point(0.0); 2]; 2];
+        for (k, dk) in self.normal_d.iter().enumerate() {
+            let d: Vec<Interval> = dk
+                .iter()
+                .map(|p| restrict_enclosing(p, lo, hi).map(|q| hull(&q)))
+                .collect::<Option<_>>()?;
+            let d = [d[0], d[1], d[2]];
+            let da = along(&d, &frame[0]);
+            for i in 0..2 {
+                let ni = along(&n, &frame[i + 1]);
+                let di = along(&d, &frame[i + 1]);
+                jac[i][k] = div(di.mul(&na).sub(&ni.mul(&da)), na2)?;
+            }
+        }
+        Some(jac)
     }
 
     /// Whether the tangents `T_u, T_v` are proven independent on the box `[lo, hi]` (some
@@ -309,4 +359,229 @@ fn morton(lo: [f64; 2], depth: u32) -> u64 {
 /// (`proofs/bitangent.md`, Lemma 2).
 pub fn mirror_dropped(cell: &[[f64; 2]], depth: u32) -> bool {
     depth <= 30 && morton([cell[0][0], cell[1][0]], depth) > morton([cell[2][0], cell[3][0]], depth)
+}
+
+/// How the square of a second patch `R` lies next to the square of a first patch `S` when they
+/// share a side (the same control points and weights along it, possibly in reverse order): the
+/// composite parameter plane holds `S` on `[0, 1]²` and `R` on the adjacent square across the
+/// shared side, so that the composite surface is continuous (`proofs/bitangent.md`, Lemma 5).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SharedSide {
+    /// The side of `S`: its axis and whether it is at 1.
+    pub first: (usize, bool),
+    /// The side of `R`.
+    pub second: (usize, bool),
+    /// `R`'s side runs against `S`'s.
+    pub reversed: bool,
+}
+
+impl SharedSide {
+    /// `R`'s parameter point in the composite plane.
+    pub fn to_composite(&self, r: [f64; 2]) -> [f64; 2] {
+        let (sa, s1) = self.first;
+        let (ra, r1) = self.second;
+        let along = if self.reversed {
+            1.0 - r[1 - ra]
+        } else {
+            r[1 - ra]
+        };
+        let dist = if r1 { 1.0 - r[ra] } else { r[ra] };
+        let mut x = [0.0; 2];
+        x[1 - sa] = along;
+        x[sa] = if s1 { 1.0 + dist } else { -dist };
+        x
+    }
+
+    /// The inverse of [`SharedSide::to_composite`].
+    pub fn from_composite(&self, x: [f64; 2]) -> [f64; 2] {
+        let (sa, s1) = self.first;
+        let (ra, r1) = self.second;
+        let along = if self.reversed {
+            1.0 - x[1 - sa]
+        } else {
+            x[1 - sa]
+        };
+        let dist = if s1 { x[sa] - 1.0 } else { -x[sa] };
+        let mut r = [0.0; 2];
+        r[1 - ra] = along;
+        r[ra] = if r1 { 1.0 - dist } else { dist };
+        r
+    }
+
+    /// A box of `R` mapped (exactly: the maps only flip and shift by 0, 1 or 2) to the
+    /// composite plane, as `(lo, hi)`.
+    fn box_to(
+        &self,
+        lo: [f64; 2],
+        hi: [f64; 2],
+        f: impl Fn(&Self, [f64; 2]) -> [f64; 2],
+    ) -> ([f64; 2], [f64; 2]) {
+        let (a, b) = (f(self, lo), f(self, hi));
+        (
+            [a[0].min(b[0]), a[1].min(b[1])],
+            [a[0].max(b[0]), a[1].max(b[1])],
+        )
+    }
+
+    /// The derivative of `R`'s parameters by the composite ones: `∂r_k/∂x_j = sign` for the
+    /// pair `(j, k, sign)` of each composite axis `j`.
+    fn chain(&self) -> [(usize, usize, f64); 2] {
+        let (sa, s1) = self.first;
+        let (ra, r1) = self.second;
+        let along = if self.reversed { -1.0 } else { 1.0 };
+        let across = if s1 { 1.0 } else { -1.0 } * if r1 { -1.0 } else { 1.0 };
+        [(1 - sa, 1 - ra, along), (sa, ra, across)]
+    }
+}
+
+/// The sides that two patches share (see [`SharedSide`]), each checked exactly: equal control
+/// points and weights along the side, and normals parallel along it (the cross product of the
+/// two normals' restrictions, a polynomial of degree at most the sum of theirs, vanishes at more
+/// points than its degree).
+pub fn shared_sides(first: &RationalPatch, second: &RationalPatch) -> Vec<SharedSide> {
+    use crate::surface::Edge;
+    let side_of = |e: Edge| match e {
+        Edge::V0 => (1, false),
+        Edge::V1 => (1, true),
+        Edge::U0 => (0, false),
+        Edge::U1 => (0, true),
+    };
+    let (n1, _) = deflated_normal(first);
+    let (n2, _) = deflated_normal(second);
+    let mut out = Vec::new();
+    for e1 in Edge::ALL {
+        let row1 = first.edge(e1);
+        for e2 in Edge::ALL {
+            let row2 = second.edge(e2);
+            if row1.len() != row2.len() {
+                continue;
+            }
+            for reversed in [false, true] {
+                let same = (0..row1.len()).all(|i| {
+                    let j = if reversed { row1.len() - 1 - i } else { i };
+                    row1[i] == row2[j]
+                });
+                if !same {
+                    continue;
+                }
+                let side = SharedSide {
+                    first: side_of(e1),
+                    second: side_of(e2),
+                    reversed,
+                };
+                if normals_parallel(&n1, &n2, &side) {
+                    out.push(side);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Whether the two normals are parallel at every point of the shared side, exactly.
+fn normals_parallel(n1: &[Poly; 3], n2: &[Poly; 3], side: &SharedSide) -> bool {
+    let deg = |n: &[Poly; 3], axis: usize| n.iter().map(|p| p.degrees()[axis]).max().unwrap_or(0);
+    let k = deg(n1, 1 - side.first.0) + deg(n2, 1 - side.second.0) + 1;
+    let one = Rational::from(1);
+    (0..k).all(|i| {
+        let t = Rational::from(((i + 1) as i64, (k + 1) as i64));
+        let mut a = [Rational::new(), Rational::new()];
+        a[1 - side.first.0] = t.clone();
+        a[side.first.0] = if side.first.1 {
+            one.clone()
+        } else {
+            Rational::new()
+        };
+        let mut b = [Rational::new(), Rational::new()];
+        b[1 - side.second.0] = if side.reversed {
+            Rational::from(&one - &t)
+        } else {
+            t.clone()
+        };
+        b[side.second.0] = if side.second.1 {
+            one.clone()
+        } else {
+            Rational::new()
+        };
+        let x: Vec<Rational> = n1.iter().map(|p| p.eval(&a)).collect();
+        let y: Vec<Rational> = n2.iter().map(|p| p.eval(&b)).collect();
+        (0..3).all(|c| {
+            let (i, j) = ((c + 1) % 3, (c + 2) % 3);
+            Rational::from(&x[i] * &y[j]) == Rational::from(&x[j] * &y[i])
+        })
+    })
+}
+
+/// Lemma 5 of `proofs/bitangent.md`: whether the box pair `(B₁ of S, B₂ of R)` holds no pair of
+/// distinct points of the composite surface with parallel normals, because the Gauss chart is
+/// proven injective on the hull of the two boxes in the composite plane (the interval hull of
+/// its Jacobians over both parts is regular). Its solutions are then the coincident points of
+/// the shared side only.
+pub fn seam_excludes(
+    first: &DiagonalTest,
+    second: &DiagonalTest,
+    side: &SharedSide,
+    b1: ([f64; 2], [f64; 2]),
+    b2: ([f64; 2], [f64; 2]),
+) -> bool {
+    let (c_lo, c_hi) = side.box_to(b2.0, b2.1, SharedSide::to_composite);
+    let lo = [b1.0[0].min(c_lo[0]), b1.0[1].min(c_lo[1])];
+    let hi = [b1.1[0].max(c_hi[0]), b1.1[1].max(c_hi[1])];
+    if hi[0] - lo[0] > 0.5 || hi[1] - lo[1] > 0.5 {
+        return false;
+    }
+    // The part on S's square and the part on R's.
+    let q1 = (
+        [lo[0].max(0.0), lo[1].max(0.0)],
+        [hi[0].min(1.0), hi[1].min(1.0)],
+    );
+    let (r_lo, r_hi) = side.box_to(lo, hi, SharedSide::from_composite);
+    let q2 = (
+        [r_lo[0].max(0.0), r_lo[1].max(0.0)],
+        [r_hi[0].min(1.0), r_hi[1].min(1.0)],
+    );
+    // A frame about the normal at the middle of the first part.
+    let Some(n) = first.normal_range(q1.0, q1.1) else {
+        return false;
+    };
+    let a = n.map(|x| 0.5 * (x.lo() + x.hi()));
+    let la = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
+    if la.is_nan() || la <= 0.0 {
+        return false;
+    }
+    let a = a.map(|x| x / la);
+    let h = if a[0].abs() < 0.6 {
+        [1.0, 0.0, 0.0]
+    } else {
+        [0.0, 1.0, 0.0]
+    };
+    let c = h[0] * a[0] + h[1] * a[1] + h[2] * a[2];
+    let e1 = {
+        let v: [f64; 3] = std::array::from_fn(|k| h[k] - c * a[k]);
+        let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+        v.map(|x| x / l)
+    };
+    let e2 = [
+        a[1] * e1[2] - a[2] * e1[1],
+        a[2] * e1[0] - a[0] * e1[2],
+        a[0] * e1[1] - a[1] * e1[0],
+    ];
+    let frame = [a, e1, e2];
+    let Some(j1) = first.gauss_jacobian(q1.0, q1.1, &frame) else {
+        return false;
+    };
+    let Some(jr) = second.gauss_jacobian(q2.0, q2.1, &frame) else {
+        return false;
+    };
+    // R's Jacobian in composite coordinates: column j is ∂/∂r_k times ∂r_k/∂x_j.
+    let mut j2 = [[Interval::point(0.0); 2]; 2];
+    for (j, k, sign) in side.chain() {
+        for i in 0..2 {
+            j2[i][j] = jr[i][k].mul(&Interval::point(sign));
+        }
+    }
+    let m: [[Interval; 2]; 2] =
+        std::array::from_fn(|i| std::array::from_fn(|j| j1[i][j].hull(&j2[i][j])));
+    let det = m[0][0].mul(&m[1][1]).sub(&m[0][1].mul(&m[1][0]));
+    !det.contains(0.0)
 }

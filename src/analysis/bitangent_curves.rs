@@ -12,7 +12,9 @@
 //! points are not separated from the spurious coincident pairs: boxes whose two pieces'
 //! enclosures overlap at `coincidence_depth` are reported unresolved.
 
-use super::bitangent::{bitangent_system, deflated_normal, mirror_dropped, DiagonalTest};
+use super::bitangent::{
+    bitangent_system, deflated_normal, mirror_dropped, seam_excludes, shared_sides, DiagonalTest,
+};
 use super::patch_curve::{Accuracy, Evaluator};
 use crate::model::Model;
 use crate::number::{Interval, Rational};
@@ -146,6 +148,8 @@ impl PairBitangents {
 /// The bitangents of a model.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct BitangentCurves {
+    /// The number of patches.
+    pub patches: usize,
     /// The pairs solved (in order of patches).
     pub pairs: Vec<PairBitangents>,
     /// Pairs of distinct patches pruned: their normal cones are neither overlapping nor
@@ -336,6 +340,11 @@ pub fn pair_bitangents(
         opts.max_chord = Some([a.solver_chord, b.solver_chord].concat());
     }
     let coincidence_depth = options.coincidence_depth;
+    let seams = if same {
+        Vec::new()
+    } else {
+        shared_sides(first, second)
+    };
     let verdict = |cell: &[[f64; 2]], depth: u32| -> BoxVerdict {
         if same && mirror_dropped(cell, depth) {
             return BoxVerdict::Drop;
@@ -348,6 +357,13 @@ pub fn pair_bitangents(
             if hi[0] - lo[0] <= 0.5 && hi[1] - lo[1] <= 0.5 && sides[0].jets.excludes(lo, hi) {
                 return BoxVerdict::Drop;
             }
+        }
+        if depth >= 1
+            && seams.iter().any(|side| {
+                seam_excludes(&sides[0].jets, &sides[1].jets, side, (lo1, hi1), (lo2, hi2))
+            })
+        {
+            return BoxVerdict::Drop;
         }
         if depth >= coincidence_depth {
             let a = sides[0].jets.image(lo1, hi1);
@@ -519,6 +535,7 @@ pub fn bitangent_curves(model: &Model, opts: &BitangentOptions) -> BitangentCurv
         .map(|&(i, j)| pair_bitangents(patches[i], i, patches[j], j, opts))
         .collect();
     BitangentCurves {
+        patches: patches.len(),
         pairs,
         pruned,
         excluded_self: excluded.iter().filter(|e| **e).count(),

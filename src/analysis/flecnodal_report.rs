@@ -2,7 +2,9 @@
 //! README), text, SVG (projected along a view direction) and OBJ polylines.
 
 use super::flecnodal_curves::{FlecnodalCurves, FlecnodalUnresolved};
-use super::render::{draw_patches, outline_layer, svg_document, Layer, Projection};
+use super::render::{
+    draw_patches, obj_polyline, outline_layer, reason_lines, svg_document, Layer, Projection,
+};
 use super::silhouette::View;
 use crate::model::Model;
 
@@ -199,28 +201,10 @@ impl FlecnodalReport {
         if let (Some(t), Some(e)) = (self.tolerance, self.error_bound) {
             out += &format!("tolerance {t:.3e}, proven error bound {e:.3e}\n");
         }
-        // Grouped by reason: the boxes and the patches they are on.
-        let mut reasons: std::collections::BTreeMap<
-            &str,
-            (usize, std::collections::BTreeSet<usize>),
-        > = Default::default();
-        for u in &self.unresolved {
-            let e = reasons.entry(u.reason.as_str()).or_default();
-            e.0 += 1;
-            e.1.insert(u.patch);
-        }
-        for (reason, (n, patches)) in reasons {
-            let list: Vec<String> = patches.iter().take(12).map(|p| p.to_string()).collect();
-            let more = if patches.len() > 12 {
-                format!(" and {} more", patches.len() - 12)
-            } else {
-                String::new()
-            };
-            out += &format!(
-                "  {n} boxes unresolved on patches {}{more}: {reason}\n",
-                list.join(", ")
-            );
-        }
+        out += &reason_lines(
+            self.unresolved.iter().map(|u| (u.reason.as_str(), u.patch)),
+            "patches",
+        );
         for d in &self.degenerate {
             out += &format!("  patch {}: degenerate: {}\n", d.patch, d.reason);
         }
@@ -291,21 +275,7 @@ impl FlecnodalReport {
                 if c.closed { "closed" } else { "open" },
                 if c.complete { "complete" } else { "incomplete" }
             );
-            for p in &c.points {
-                out += &format!("v {} {} {}\n", p[0], p[1], p[2]);
-            }
-            if c.points.len() > 1 {
-                let mut line = String::from("l");
-                for i in 0..c.points.len() {
-                    line += &format!(" {}", next + i);
-                }
-                if c.closed {
-                    line += &format!(" {next}");
-                }
-                out += &line;
-                out += "\n";
-            }
-            next += c.points.len();
+            obj_polyline(&mut out, &mut next, &c.points, c.closed);
         }
         out
     }

@@ -4,6 +4,7 @@ pub mod accuracy;
 pub mod baseline;
 pub mod bitangent;
 pub mod bitangent_curves;
+pub mod bitangent_report;
 pub mod facing;
 pub mod flecnodal;
 pub mod flecnodal_curves;

@@ -362,21 +362,57 @@ pub fn silhouette_obj(s: &Silhouette, title: &str) -> String {
             c.error_bound
                 .map_or(String::new(), |e| format!(", error bound {e}")),
         );
-        for p in &c.points {
-            out += &format!("v {} {} {}\n", p[0], p[1], p[2]);
-        }
+        obj_polyline(&mut out, &mut next, &c.points, c.closed);
+    }
+    out
+}
+
+/// Appends one polyline to an OBJ text: its vertices (`next` is the index of the first one,
+/// advanced past them) and, with two or more points, its `l` line (closed back to the first
+/// point if `closed`).
+pub(crate) fn obj_polyline(out: &mut String, next: &mut usize, points: &[[f64; 3]], closed: bool) {
+    for p in points {
+        *out += &format!("v {} {} {}\n", p[0], p[1], p[2]);
+    }
+    if points.len() > 1 {
         let mut line = String::from("l");
-        for i in 0..c.points.len() {
-            line += &format!(" {}", next + i);
+        for i in 0..points.len() {
+            line += &format!(" {}", *next + i);
         }
-        if c.closed && c.points.len() > 1 {
+        if closed {
             line += &format!(" {next}");
         }
-        next += c.points.len();
-        if c.points.len() > 1 {
-            out += &line;
-            out += "\n";
-        }
+        *out += &line;
+        *out += "\n";
+    }
+    *next += points.len();
+}
+
+/// Unresolved items grouped by reason, one line each: how many, and on what (the first 12
+/// keys, e.g. patches or pairs of patches).
+pub(crate) fn reason_lines<'a, K: Ord + std::fmt::Display>(
+    items: impl Iterator<Item = (&'a str, K)>,
+    what: &str,
+) -> String {
+    let mut reasons: std::collections::BTreeMap<&str, (usize, std::collections::BTreeSet<K>)> =
+        Default::default();
+    for (reason, key) in items {
+        let e = reasons.entry(reason).or_default();
+        e.0 += 1;
+        e.1.insert(key);
+    }
+    let mut out = String::new();
+    for (reason, (n, keys)) in reasons {
+        let list: Vec<String> = keys.iter().take(12).map(|p| p.to_string()).collect();
+        let more = if keys.len() > 12 {
+            format!(" and {} more", keys.len() - 12)
+        } else {
+            String::new()
+        };
+        out += &format!(
+            "  {n} boxes unresolved on {what} {}{more}: {reason}\n",
+            list.join(", ")
+        );
     }
     out
 }

@@ -1,0 +1,271 @@
+//! The report of `limn curves --kind bitangent`: JSON (field names are a public contract, see
+//! README), text, SVG (projected along a view direction) and OBJ polylines.
+
+use super::bitangent_curves::{BitangentCurves, BitangentUnresolved};
+use super::render::{
+    draw_patches, obj_polyline, outline_layer, reason_lines, svg_document, Layer, Projection,
+};
+use super::silhouette::View;
+use crate::model::Model;
+
+/// One bitangent curve of the report: a chain of pairs of points with one tangent plane.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct BitangentCurve {
+    /// The patches of the first and of the second points.
+    pub patches: [usize; 2],
+    /// A closed loop.
+    pub closed: bool,
+    /// Nothing missing at its ends (they lie on the patches' sides).
+    pub complete: bool,
+    /// The first points in space, in order.
+    pub points: Vec<[f64; 3]>,
+    /// The second points, in the same order.
+    pub points_second: Vec<[f64; 3]>,
+    /// The first points' `(u, v)` on the first patch.
+    pub points_uv: Vec<[f64; 2]>,
+    /// The second points' `(u, v)` on the second patch.
+    pub points_uv_second: Vec<[f64; 2]>,
+    /// The unit direction from the first to the second point: the view direction of the
+    /// visual event of the pair (up to sign).
+    pub lines: Vec<[f64; 3]>,
+    /// The unit normal of the common tangent plane.
+    pub normals: Vec<[f64; 3]>,
+}
+
+/// Work counts.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct BitangentStats {
+    /// Patches.
+    pub patches: usize,
+    /// Pairs of patches considered (a patch with itself included).
+    pub pairs: usize,
+    /// Pairs pruned by their cones of normals.
+    pub pairs_pruned: usize,
+    /// Patches whose pair with themselves was excluded whole by the diagonal lemma.
+    pub self_pairs_excluded: usize,
+    /// Pairs solved.
+    pub pairs_solved: usize,
+    /// Curves.
+    pub curves: usize,
+    /// Pairs of points on them.
+    pub points: usize,
+    /// Boxes examined by the curve solver, all pairs.
+    pub boxes: usize,
+    /// Boxes whose polynomials were recomputed exactly.
+    pub escalations: usize,
+    /// Unresolved boxes.
+    pub unresolved: usize,
+    /// Wall-clock milliseconds.
+    pub ms: f64,
+    /// Threads.
+    pub threads: usize,
+}
+
+/// The document of `limn curves --kind bitangent`.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct BitangentReport {
+    /// The model file.
+    pub model: String,
+    /// "bitangent".
+    pub kind: &'static str,
+    /// Topology proven for every pair (nothing unresolved, every curve complete), and with a
+    /// tolerance every drawn segment proven within it.
+    pub certified: bool,
+    /// The tolerance in model units, if any.
+    pub tolerance: Option<f64>,
+    /// With a tolerance: the largest proven distance between a drawn segment and its curve.
+    pub error_bound: Option<f64>,
+    /// The curves.
+    pub curves: Vec<BitangentCurve>,
+    /// The boxes of `(u, v, s, t)` not decided.
+    pub unresolved: Vec<BitangentUnresolved>,
+    /// Work counts.
+    pub stats: BitangentStats,
+}
+
+impl BitangentReport {
+    /// The report of a run.
+    pub fn new(
+        model: &str,
+        r: &BitangentCurves,
+        tolerance: Option<f64>,
+        ms: f64,
+        threads: usize,
+    ) -> BitangentReport {
+        let curves: Vec<BitangentCurve> = r
+            .pairs
+            .iter()
+            .flat_map(|p| &p.branches)
+            .map(|b| BitangentCurve {
+                patches: b.patches,
+                closed: b.closed,
+                complete: b.complete,
+                points: b.points.iter().map(|p| p.p).collect(),
+                points_second: b.points.iter().map(|p| p.q).collect(),
+                points_uv: b.points.iter().map(|p| p.first_uv).collect(),
+                points_uv_second: b.points.iter().map(|p| p.second_uv).collect(),
+                lines: b.points.iter().map(|p| p.line).collect(),
+                normals: b.points.iter().map(|p| p.normal).collect(),
+            })
+            .collect();
+        let unresolved: Vec<BitangentUnresolved> = r
+            .pairs
+            .iter()
+            .flat_map(|p| p.unresolved.iter().cloned())
+            .collect();
+        let error_bound = tolerance.and_then(|_| {
+            r.pairs
+                .iter()
+                .try_fold(0.0f64, |m, p| p.error_bound.map(|e| m.max(e)))
+        });
+        let within = r.pairs.iter().all(|p| p.within_tolerance);
+        BitangentReport {
+            model: model.to_string(),
+            kind: "bitangent",
+            certified: r.is_certified() && within,
+            tolerance,
+            error_bound,
+            stats: BitangentStats {
+                patches: r.patches,
+                pairs: r.pairs_total,
+                pairs_pruned: r.pruned,
+                self_pairs_excluded: r.excluded_self,
+                pairs_solved: r.pairs.len(),
+                curves: curves.len(),
+                points: curves.iter().map(|c| c.points.len()).sum(),
+                boxes: r.pairs.iter().map(|p| p.boxes).sum(),
+                escalations: r.pairs.iter().map(|p| p.escalations).sum(),
+                unresolved: unresolved.len(),
+                ms,
+                threads,
+            },
+            curves,
+            unresolved,
+        }
+    }
+
+    /// A short human-readable summary.
+    pub fn text(&self) -> String {
+        let s = &self.stats;
+        let mut out = format!(
+            "{}: {} bitangent curves ({} pairs of points) on {} patches, {}\n",
+            self.model,
+            s.curves,
+            s.points,
+            s.patches,
+            if self.certified {
+                "certified".to_string()
+            } else {
+                format!(
+                    "NOT fully certified: {} unresolved boxes, {} incomplete curves{}",
+                    s.unresolved,
+                    self.curves.iter().filter(|c| !c.complete).count(),
+                    match (self.tolerance, self.error_bound) {
+                        (Some(t), Some(e)) if e > t =>
+                            format!(", error bound {e:.3e} above the tolerance"),
+                        (Some(_), None) => ", no error bound".to_string(),
+                        _ => String::new(),
+                    }
+                )
+            }
+        );
+        if let (Some(t), Some(e)) = (self.tolerance, self.error_bound) {
+            out += &format!("tolerance {t:.3e}, proven error bound {e:.3e}\n");
+        }
+        out += &format!(
+            "{} pairs of patches: {} pruned by their normal cones, {} patches without self-bitangents (diagonal lemma), {} solved\n",
+            s.pairs, s.pairs_pruned, s.self_pairs_excluded, s.pairs_solved
+        );
+        out += &reason_lines(
+            self.unresolved.iter().map(|u| {
+                (
+                    u.reason.as_str(),
+                    format!("{}-{}", u.patches[0], u.patches[1]),
+                )
+            }),
+            "pairs",
+        );
+        out += &format!(
+            "{} boxes, {} escalations, {:.1} ms on {} threads\n",
+            s.boxes, s.escalations, s.ms, s.threads
+        );
+        out
+    }
+
+    /// The curves of both points drawn in the view plane over the patches' sides in grey:
+    /// first points blue, second points green, incomplete curves red and dashed, the centres of
+    /// unresolved boxes marked in red.
+    pub fn svg(&self, model: &Model, view: &View) -> String {
+        let proj = Projection::new(view, model);
+        let draw = draw_patches(model);
+        let path = |points: &[[f64; 3]], closed: bool| {
+            let mut p: Vec<[f64; 2]> = points.iter().map(|x| proj.project(*x)).collect();
+            if closed {
+                if let Some(f) = p.first().copied() {
+                    p.push(f);
+                }
+            }
+            p
+        };
+        let (complete, incomplete): (Vec<&BitangentCurve>, Vec<&BitangentCurve>) =
+            self.curves.iter().partition(|c| c.complete);
+        let layers = [
+            outline_layer(&draw, &proj),
+            Layer {
+                style: r##"stroke="#04c" stroke-width="1.6""##,
+                paths: complete.iter().map(|c| path(&c.points, c.closed)).collect(),
+                filled: false,
+            },
+            Layer {
+                style: r##"stroke="#0a4" stroke-width="1.6""##,
+                paths: complete
+                    .iter()
+                    .map(|c| path(&c.points_second, c.closed))
+                    .collect(),
+                filled: false,
+            },
+            Layer {
+                style: r##"stroke="#d00" stroke-width="1.6" stroke-dasharray="6,3""##,
+                paths: incomplete
+                    .iter()
+                    .flat_map(|c| [path(&c.points, c.closed), path(&c.points_second, c.closed)])
+                    .collect(),
+                filled: false,
+            },
+        ];
+        let marks: Vec<[f64; 2]> = self
+            .unresolved
+            .iter()
+            .flat_map(|u| u.at.map(|a| proj.project(a)))
+            .collect();
+        let title = format!(
+            "{}: {} bitangent curves (first points blue, second green), {}",
+            self.model,
+            self.stats.curves,
+            if self.certified {
+                "certified".to_string()
+            } else {
+                format!("{} unresolved boxes (red)", self.stats.unresolved)
+            }
+        );
+        svg_document(&title, &layers, &marks)
+    }
+
+    /// The curves as OBJ polylines: per curve, the first points' polyline, then the second's.
+    pub fn obj(&self) -> String {
+        let mut out = format!("# limn bitangent curves: {}\n", self.model);
+        let mut next = 1usize;
+        for (k, c) in self.curves.iter().enumerate() {
+            for (which, points) in [("first", &c.points), ("second", &c.points_second)] {
+                out += &format!(
+                    "# curve {k} ({which} points): patches {:?}, {}, {}\n",
+                    c.patches,
+                    if c.closed { "closed" } else { "open" },
+                    if c.complete { "complete" } else { "incomplete" }
+                );
+                obj_polyline(&mut out, &mut next, points, c.closed);
+            }
+        }
+        out
+    }
+}
