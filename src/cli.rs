@@ -4,6 +4,7 @@
 use crate::analysis::baseline::{baseline_silhouette, BaselineMethod};
 use crate::analysis::bitangent_curves::{bitangent_curves, BitangentOptions};
 use crate::analysis::bitangent_report::BitangentReport;
+use crate::analysis::events::{events, events_svg, EventOptions, EventsReport};
 use crate::analysis::flecnodal_curves::{flecnodal_curves, FlecnodalOptions};
 use crate::analysis::flecnodal_report::FlecnodalReport;
 use crate::analysis::hlr::{hidden_lines, HlrOptions, HlrReport};
@@ -95,6 +96,21 @@ enum Command {
         /// The direction along which the SVG drawing is projected, x,y,z.
         #[arg(long, allow_hyphen_values = true, default_value = DEMO_DIRECTION)]
         dir: String,
+        #[command(flatten)]
+        run: RunArgs,
+    },
+    /// Visual events on the viewing sphere: the view directions of the events of the parabolic
+    /// (lip, beak-to-beak), flecnodal (swallowtail) and bitangent curves, each with its
+    /// antipode, as JSON or as an SVG map of the sphere (cylindrical equal-area).
+    Events {
+        /// The model file.
+        model: PathBuf,
+        /// The families, comma separated: parabolic, flecnodal, bitangent.
+        #[arg(long, default_value = "parabolic,flecnodal,bitangent")]
+        kinds: String,
+        /// Output format.
+        #[arg(long, value_enum, default_value_t = CurveFormat::Text)]
+        format: CurveFormat,
         #[command(flatten)]
         run: RunArgs,
     },
@@ -467,6 +483,81 @@ where
                 pool.current_num_threads(),
             );
             let text = render_silhouette(format, &report, &m, &projection, &s)?;
+            write_output(run.output, &text, out)
+        }
+        Command::Events {
+            model,
+            kinds,
+            format,
+            run,
+        } => {
+            check_run_arguments(&run)?;
+            if format == CurveFormat::Obj {
+                return Err(CliError::input(
+                    "--format: events are written as text, json or svg",
+                ));
+            }
+            let mut wanted = [false; 3];
+            for k in kinds.split(',').map(str::trim) {
+                match k {
+                    "parabolic" => wanted[0] = true,
+                    "flecnodal" => wanted[1] = true,
+                    "bitangent" => wanted[2] = true,
+                    other => {
+                        return Err(CliError::input(format!(
+                            "--kinds: unknown family {other:?} (expected parabolic, flecnodal, bitangent)"
+                        )))
+                    }
+                }
+            }
+            refuse_overwrite(run.output.iter(), run.force)?;
+            let Loaded {
+                name,
+                model: m,
+                weld,
+                opts,
+                pool,
+                tol_abs,
+            } = load(&model, &run)?;
+            let start = std::time::Instant::now();
+            let deadline = opts.deadline;
+            let eopts = EventOptions {
+                parabolic: wanted[0].then(|| (opts.clone(), weld, tol_abs)),
+                flecnodal: wanted[1].then(|| {
+                    let d = FlecnodalOptions::with_tolerance(tol_abs);
+                    FlecnodalOptions {
+                        solver: SpaceCurveOptions {
+                            deadline,
+                            ..d.solver.clone()
+                        },
+                        ..d
+                    }
+                }),
+                bitangent: wanted[2].then(|| {
+                    let d = BitangentOptions::with_tolerance(tol_abs);
+                    BitangentOptions {
+                        solver: SpaceCurveOptions {
+                            deadline,
+                            ..d.solver.clone()
+                        },
+                        ..d
+                    }
+                }),
+            };
+            let ev = pool.install(|| events(&m, &eopts));
+            let ms = start.elapsed().as_secs_f64() * 1e3;
+            let report = EventsReport::new(&name, &ev, ms, pool.current_num_threads());
+            let text = match format {
+                CurveFormat::Json => pretty_json(&report)?,
+                CurveFormat::Svg => events_svg(
+                    &ev,
+                    &format!(
+                        "{name}: {} event curves on the viewing sphere (parabolic blue, flecnodal green, bitangent orange; dashed: source not certified)",
+                        ev.curves.len()
+                    ),
+                ),
+                _ => report.text(),
+            };
             write_output(run.output, &text, out)
         }
         Command::Hlr {

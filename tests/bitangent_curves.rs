@@ -12,27 +12,10 @@ fn q(a: i64, b: i64) -> Rational {
     Rational::from((a, b))
 }
 
-/// `z = (x² − 1)² + y² + x y / 2` over `[−3/2, 3/2] × [−1, 1]`, or with x and y exchanged.
-///
-/// Its bitangent planes: equal gradients give `Δy = −Δx / 4` and `w'(x') − w'(x) = Δx / 8` for
-/// `w = (x² − 1)²`, and then the chord condition is the bitangent condition of the double well
-/// `w̃ = w − x² / 16` (even, one bitangent): `x = ∓x₀` with `x₀² = 1 + 1/32`, and
-/// `y' = y − x₀ / 2` on the side `x' = +x₀`.
+/// The double well of `shapes::double_well`: one family of bitangent pairs, `(−x₀, y)` and
+/// `(x₀, y − x₀/2)` with `x₀² = 33/32`.
 fn double_well(swap: bool) -> limn::surface::RationalPatch {
-    let terms = [
-        (4, 0, q(1, 1)),
-        (2, 0, q(-2, 1)),
-        (0, 0, q(1, 1)),
-        (0, 2, q(1, 1)),
-        (1, 1, q(1, 2)),
-    ];
-    let (a, b) = ([q(-3, 2), q(3, 2)], [q(-1, 1), q(1, 1)]);
-    if swap {
-        let t: Vec<_> = terms.iter().map(|(i, j, c)| (*j, *i, c.clone())).collect();
-        shapes::graph(&t, b, a)
-    } else {
-        shapes::graph(&terms, a, b)
-    }
+    shapes::double_well(swap)
 }
 
 fn check_double_well(b: &PairBitangents, swap: bool, tol: f64) {

@@ -384,3 +384,39 @@ fn bitangent_with_a_time_limit_is_not_certified() {
         "json",
     ]);
 }
+
+#[test]
+fn events_json_svg_and_bad_kinds() {
+    let (code, out, err) = limn(&["events", TEAPOT, "--kinds", "parabolic", "--format", "json"]);
+    assert_eq!(code, Some(0), "{err}");
+    let r: Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(r["sources_certified"], true);
+    assert_eq!(r["families"][0]["kind"], "parabolic");
+    let curves = r["curves"].as_array().unwrap();
+    assert!(!curves.is_empty());
+    for c in curves {
+        assert_eq!(c["kind"], "parabolic");
+        for d in c["directions"].as_array().unwrap() {
+            let v: Vec<f64> = d
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|x| x.as_f64().unwrap())
+                .collect();
+            assert!(((v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt() - 1.0).abs() < 1e-9);
+        }
+    }
+    let (code, out, _) = limn(&["events", TEAPOT, "--kinds", "parabolic", "--format", "svg"]);
+    assert_eq!(code, Some(0));
+    assert!(out.starts_with("<svg") || out.starts_with("<?xml"));
+    for args in [
+        &["events", TEAPOT, "--kinds", "parabolic,cusps"][..],
+        &["events", TEAPOT, "--format", "obj"][..],
+        &["events", "no/such/file.bpt"][..],
+    ] {
+        let (code, out, err) = limn(args);
+        assert_eq!(code, Some(2), "{args:?}: {err}");
+        assert!(out.is_empty());
+        assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
+    }
+}

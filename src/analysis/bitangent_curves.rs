@@ -47,12 +47,13 @@ impl Default for BitangentOptions {
 }
 
 impl BitangentOptions {
-    /// The defaults for a model: per pair 20,000 boxes for the topology, 100,000 with a
+    /// The defaults for a model: per pair 10,000 boxes for the topology, 50,000 with a
     /// tolerance, to depth 20 (a curve that turns very near a grid plane needs small boxes
-    /// there; on two spheres one such turn needed depth 17).
+    /// there; on two spheres one such turn needed depth 17). A pair with a plane tangent along
+    /// a curve (a 2-dimensional set of pairs) uses its whole budget.
     pub fn with_tolerance(tolerance: Option<f64>) -> BitangentOptions {
         let max_depth = 20;
-        let max_boxes = if tolerance.is_some() { 100_000 } else { 20_000 };
+        let max_boxes = if tolerance.is_some() { 50_000 } else { 10_000 };
         let mut solver = SpaceCurveOptions {
             max_depth,
             max_boxes,

@@ -5,6 +5,7 @@ pub mod baseline;
 pub mod bitangent;
 pub mod bitangent_curves;
 pub mod bitangent_report;
+pub mod events;
 pub mod facing;
 pub mod flecnodal;
 pub mod flecnodal_curves;

@@ -10,10 +10,10 @@ use crate::number::Rational;
 use crate::solver::curve_n::{SpaceArc, SpaceCurve};
 use crate::surface::RationalPatch;
 
-/// f64 evaluation of a patch and its first partials.
+/// f64 evaluation of a patch and its first and second partials.
 pub(crate) struct Evaluator {
-    /// X, Y, Z, W and their u and v derivatives.
-    h: Vec<[Bernstein<f64>; 3]>,
+    /// X, Y, Z, W and their u, v, uu, uv, vv derivatives.
+    h: Vec<[Bernstein<f64>; 6]>,
 }
 
 impl Evaluator {
@@ -22,9 +22,38 @@ impl Evaluator {
             h: patch
                 .homogeneous()
                 .iter()
-                .map(|p| [p, &p.deriv(0), &p.deriv(1)].map(|q| q.convert(Precision::F64)))
+                .map(|p| {
+                    let (pu, pv) = (p.deriv(0), p.deriv(1));
+                    [p, &pu, &pv, &pu.deriv(0), &pu.deriv(1), &pv.deriv(1)]
+                        .map(|q| q.convert(Precision::F64))
+                })
                 .collect(),
         }
+    }
+
+    /// S, S_u, S_v, S_uu, S_uv, S_vv at (u, v).
+    pub(crate) fn eval2(&self, u: f64, v: f64) -> [[f64; 3]; 6] {
+        let at: Vec<[f64; 6]> = self
+            .h
+            .iter()
+            .map(|d| std::array::from_fn(|i| d[i].eval(&[u, v])))
+            .collect();
+        let w = at[3];
+        let mut out = [[0.0; 3]; 6];
+        for k in 0..3 {
+            let x = at[k];
+            // S = X / W: S_a = (X_a − S W_a) / W, S_ab = (X_ab − S_a W_b − S_b W_a − S W_ab) / W.
+            let s = x[0] / w[0];
+            let su = (x[1] - s * w[1]) / w[0];
+            let sv = (x[2] - s * w[2]) / w[0];
+            out[0][k] = s;
+            out[1][k] = su;
+            out[2][k] = sv;
+            out[3][k] = (x[3] - 2.0 * su * w[1] - s * w[3]) / w[0];
+            out[4][k] = (x[4] - su * w[2] - sv * w[1] - s * w[4]) / w[0];
+            out[5][k] = (x[5] - 2.0 * sv * w[2] - s * w[5]) / w[0];
+        }
+        out
     }
 
     /// S, S_u, S_v at (u, v).

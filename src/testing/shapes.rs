@@ -185,6 +185,40 @@ pub fn graph(
     RationalPatch::polynomial([d[0], d[1]], points).expect("a graph is a valid patch")
 }
 
+/// A patch with one known family of bitangent planes: the graph of
+/// `z = (x² − 1)² + y² + x y / 2` over `[−3/2, 3/2] × [−1, 1]` (with `swap`, x and y exchanged).
+///
+/// Equal gradients at `(x, y)` and `(x', y')` give `Δy = −Δx / 4`; then the chord condition is
+/// the bitangent condition of the even double well `(x² − 1)² − x²/16`, whose only bitangent
+/// touches at `x = ∓x₀`, `x₀² = 33/32`. So the bitangent pairs are `(−x₀, y)` and
+/// `(x₀, y − x₀/2)` (x and y exchanged with `swap`), for every `y` that keeps both in the patch.
+///
+/// # Examples
+/// ```
+/// use limn::testing::shapes::double_well;
+/// let p = double_well(false);
+/// assert_eq!(p.degree(), [4, 2]);
+/// ```
+pub fn double_well(swap: bool) -> RationalPatch {
+    let terms = [
+        (4, 0, q(1)),
+        (2, 0, q(-2)),
+        (0, 0, q(1)),
+        (0, 2, q(1)),
+        (1, 1, Rational::from((1, 2))),
+    ];
+    let (a, b) = (
+        [Rational::from((-3, 2)), Rational::from((3, 2))],
+        [q(-1), q(1)],
+    );
+    if swap {
+        let t: Vec<_> = terms.iter().map(|(i, j, c)| (*j, *i, c.clone())).collect();
+        graph(&t, b, a)
+    } else {
+        graph(&terms, a, b)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

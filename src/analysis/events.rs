@@ -1,0 +1,366 @@
+//! Visual events on the viewing sphere (paper 003): the view directions along which the
+//! outline of a model changes, mapped from its event curves on the surface.
+//!
+//! - Parabolic curves: the asymptotic direction at each parabolic point (the lines of the
+//!   paper's axis cylinder developable), where lips and beak-to-beak events happen.
+//! - Flecnodal curves: the line with 4-point contact (the flecnodal scroll), swallowtails.
+//! - Bitangent curves: the line through the two points (the bitangent developable), where two
+//!   outline pieces cross or meet (tangent crossings, tritangent events where they cross).
+//!
+//! Each event curve on the sphere is the image of a curve on the surface under a continuous map
+//! (away from flat points), so it is connected, closed when its source is, and a source whose
+//! topology is certified gives a sphere curve whose pieces are certified to be images of whole
+//! curves. The drawn directions are f64 evaluations at the source's proven points: they are not
+//! enclosed, and no distance bound on the sphere is claimed. A view direction and its opposite
+//! see the same events, so both antipodes are drawn.
+
+use super::bitangent_curves::{bitangent_curves, BitangentOptions};
+use super::flecnodal_curves::{flecnodal_curves, FlecnodalOptions};
+use super::model_curves::Silhouette;
+use super::patch_curve::Evaluator;
+use super::render::{svg_document, Layer};
+use crate::model::Model;
+
+/// The family of an event curve.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum EventKind {
+    /// Asymptotic directions at parabolic points: lip and beak-to-beak.
+    Parabolic,
+    /// 4-point contact lines at flecnodal points: swallowtail.
+    Flecnodal,
+    /// Lines through bitangent pairs: tangent crossings and tritangents.
+    Bitangent,
+}
+
+/// One event curve on the viewing sphere.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct SphereCurve {
+    /// Its family.
+    pub kind: EventKind,
+    /// The patches of its source curve.
+    pub patches: Vec<usize>,
+    /// The source curve is closed.
+    pub closed: bool,
+    /// The source curve's topology is certified (complete, nothing missing at its ends).
+    pub certified_source: bool,
+    /// Unit view directions in order along the curve (one antipode, signs continuous along
+    /// it; the other antipode is their negation). Points where the direction is undefined (a
+    /// flat point) are left out.
+    pub directions: Vec<[f64; 3]>,
+}
+
+/// The event curves of a model on the viewing sphere, and what was not decided on the surface.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct Events {
+    /// The curves.
+    pub curves: Vec<SphereCurve>,
+    /// Per family: source curves whose topology is not certified, and unresolved regions of
+    /// the source computation.
+    pub uncertified: Vec<(EventKind, usize, usize)>,
+}
+
+impl Events {
+    /// Every source curve certified and nothing unresolved.
+    pub fn sources_certified(&self) -> bool {
+        self.uncertified.iter().all(|&(_, c, u)| c == 0 && u == 0)
+    }
+}
+
+/// The directions with signs chosen along the curve so that each is within 90° of the one
+/// before (the events' lines are undirected; a sign flip would draw a jump to the antipode).
+fn continuous(mut dirs: Vec<[f64; 3]>) -> Vec<[f64; 3]> {
+    for i in 1..dirs.len() {
+        let (a, b) = (dirs[i - 1], dirs[i]);
+        if a[0] * b[0] + a[1] * b[1] + a[2] * b[2] < 0.0 {
+            dirs[i] = b.map(|x| -x);
+        }
+    }
+    dirs
+}
+
+fn unit(v: [f64; 3]) -> Option<[f64; 3]> {
+    let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    (l > 0.0 && l.is_finite()).then(|| v.map(|x| x / l))
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// The asymptotic direction in space at a parabolic point `(u, v)` of a patch: the kernel of
+/// the second fundamental form `(L, M; M, N)`, which has rank ≤ 1 there; `None` at a flat point.
+pub(crate) fn parabolic_direction(eval: &Evaluator, u: f64, v: f64) -> Option<[f64; 3]> {
+    let [_, su, sv, suu, suv, svv] = eval.eval2(u, v);
+    let n = cross(su, sv);
+    let dot = |a: [f64; 3]| a[0] * n[0] + a[1] * n[1] + a[2] * n[2];
+    let (l, m, nn) = (dot(suu), dot(suv), dot(svv));
+    // L a + M b = 0 (or M a + N b = 0), from the row of larger size.
+    let (a, b) = if l.abs() >= nn.abs() {
+        (-m, l)
+    } else {
+        (nn, -m)
+    };
+    if a == 0.0 && b == 0.0 {
+        return None;
+    }
+    unit(std::array::from_fn(|k| a * su[k] + b * sv[k]))
+}
+
+/// The parabolic event curves of a model from its parabolic curves (as computed by
+/// [`super::parabolic::parabolic`]).
+pub fn parabolic_events(model: &Model, parabolic: &Silhouette) -> Vec<SphereCurve> {
+    let evals: Vec<Evaluator> = model
+        .patches
+        .iter()
+        .map(|p| Evaluator::new(&p.surface))
+        .collect();
+    parabolic
+        .curves
+        .iter()
+        .map(|c| SphereCurve {
+            kind: EventKind::Parabolic,
+            patches: c.patches.clone(),
+            closed: c.closed,
+            certified_source: c.certified_topology,
+            directions: continuous(
+                c.points_uv
+                    .iter()
+                    .filter_map(|&(p, u, v)| parabolic_direction(&evals[p], u, v))
+                    .collect(),
+            ),
+        })
+        .collect()
+}
+
+/// What to compute for [`events`].
+#[derive(Clone, Debug)]
+pub struct EventOptions {
+    /// Parabolic events, with the options of the parabolic curves (the plane-curve solver's,
+    /// how patch sides are matched, and the tolerance in model units).
+    pub parabolic: Option<(
+        crate::solver::CurveOptions,
+        crate::model::WeldTolerance,
+        Option<f64>,
+    )>,
+    /// Flecnodal events.
+    pub flecnodal: Option<FlecnodalOptions>,
+    /// Bitangent events.
+    pub bitangent: Option<BitangentOptions>,
+}
+
+/// The event curves of a model on the viewing sphere, for the families asked for.
+pub fn events(model: &Model, opts: &EventOptions) -> Events {
+    let mut out = Events {
+        curves: Vec::new(),
+        uncertified: Vec::new(),
+    };
+    if let Some((curve, weld, tol)) = &opts.parabolic {
+        let s = super::parabolic::parabolic(model, curve, *weld, *tol);
+        out.curves.extend(parabolic_events(model, &s));
+        out.uncertified.push((
+            EventKind::Parabolic,
+            s.curves.iter().filter(|c| !c.certified_topology).count(),
+            s.unresolved.len(),
+        ));
+    }
+    if let Some(f) = &opts.flecnodal {
+        let r = flecnodal_curves(model, f);
+        let mut incomplete = 0;
+        for b in r.patches.iter().flat_map(|p| &p.branches) {
+            incomplete += usize::from(!b.complete);
+            out.curves.push(SphereCurve {
+                kind: EventKind::Flecnodal,
+                patches: vec![b.patch],
+                closed: b.closed,
+                certified_source: b.complete,
+                directions: continuous(b.points.iter().map(|p| p.line).collect()),
+            });
+        }
+        out.uncertified.push((
+            EventKind::Flecnodal,
+            incomplete,
+            r.patches
+                .iter()
+                .map(|p| p.unresolved.len() + usize::from(p.degenerate.is_some()))
+                .sum(),
+        ));
+    }
+    if let Some(b) = &opts.bitangent {
+        let r = bitangent_curves(model, b);
+        let mut incomplete = 0;
+        for c in r.pairs.iter().flat_map(|p| &p.branches) {
+            incomplete += usize::from(!c.complete);
+            out.curves.push(SphereCurve {
+                kind: EventKind::Bitangent,
+                patches: c.patches.to_vec(),
+                closed: c.closed,
+                certified_source: c.complete,
+                directions: continuous(c.points.iter().filter_map(|p| unit(p.line)).collect()),
+            });
+        }
+        out.uncertified.push((
+            EventKind::Bitangent,
+            incomplete,
+            r.pairs.iter().map(|p| p.unresolved.len()).sum(),
+        ));
+    }
+    out
+}
+
+/// The point of the cylindrical equal-area map of the sphere: longitude in `[−π, π]`, `z`.
+fn equal_area(d: [f64; 3]) -> [f64; 2] {
+    [d[1].atan2(d[0]), d[2].clamp(-1.0, 1.0)]
+}
+
+/// The viewing sphere as an SVG map (Lambert's cylindrical equal-area projection: longitude
+/// across, `z` up), each event curve drawn with its antipode, parabolic events blue,
+/// flecnodal green, bitangent orange; curves whose source is not certified dashed.
+pub fn events_svg(ev: &Events, title: &str) -> String {
+    let style = |k: EventKind, certified: bool| match (k, certified) {
+        (EventKind::Parabolic, true) => r##"stroke="#04c" stroke-width="1.4""##,
+        (EventKind::Parabolic, false) => {
+            r##"stroke="#04c" stroke-width="1.4" stroke-dasharray="5,3""##
+        }
+        (EventKind::Flecnodal, true) => r##"stroke="#0a4" stroke-width="1.4""##,
+        (EventKind::Flecnodal, false) => {
+            r##"stroke="#0a4" stroke-width="1.4" stroke-dasharray="5,3""##
+        }
+        (EventKind::Bitangent, true) => r##"stroke="#e80" stroke-width="1.4""##,
+        (EventKind::Bitangent, false) => {
+            r##"stroke="#e80" stroke-width="1.4" stroke-dasharray="5,3""##
+        }
+    };
+    let pi = std::f64::consts::PI;
+    let mut layers = vec![Layer {
+        style: r##"stroke="#bbb" stroke-width="0.8""##,
+        paths: vec![
+            vec![[-pi, -1.0], [pi, -1.0], [pi, 1.0], [-pi, 1.0], [-pi, -1.0]],
+            vec![[-pi, 0.0], [pi, 0.0]],
+            vec![[0.0, -1.0], [0.0, 1.0]],
+        ],
+        filled: false,
+    }];
+    for kind in [
+        EventKind::Parabolic,
+        EventKind::Flecnodal,
+        EventKind::Bitangent,
+    ] {
+        for certified in [true, false] {
+            let mut paths = Vec::new();
+            for c in ev
+                .curves
+                .iter()
+                .filter(|c| c.kind == kind && c.certified_source == certified)
+            {
+                for sign in [1.0, -1.0] {
+                    let mut pts: Vec<[f64; 3]> =
+                        c.directions.iter().map(|d| d.map(|x| sign * x)).collect();
+                    if c.closed {
+                        if let Some(f) = pts.first().copied() {
+                            pts.push(f);
+                        }
+                    }
+                    // Split where the curve crosses the map's seam (longitude ±π).
+                    let mut piece: Vec<[f64; 2]> = Vec::new();
+                    for d in pts {
+                        let p = equal_area(d);
+                        if let Some(last) = piece.last() {
+                            if (p[0] - last[0]).abs() > pi {
+                                paths.push(std::mem::take(&mut piece));
+                            }
+                        }
+                        piece.push(p);
+                    }
+                    paths.push(piece);
+                }
+            }
+            layers.push(Layer {
+                style: style(kind, certified),
+                paths,
+                filled: false,
+            });
+        }
+    }
+    svg_document(title, &layers, &[])
+}
+
+/// Counts per family in [`EventsReport`].
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct FamilySummary {
+    /// The family.
+    pub kind: EventKind,
+    /// Its curves on the sphere.
+    pub curves: usize,
+    /// Source curves whose topology is not certified.
+    pub uncertified_curves: usize,
+    /// Unresolved boxes (and degenerate patches) of the source computation.
+    pub unresolved: usize,
+}
+
+/// The document of `limn events`.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct EventsReport {
+    /// The model file.
+    pub model: String,
+    /// Every source curve's topology certified and nothing unresolved (the drawn directions are
+    /// still f64 evaluations: no distance bound on the sphere).
+    pub sources_certified: bool,
+    /// Per family.
+    pub families: Vec<FamilySummary>,
+    /// The curves.
+    pub curves: Vec<SphereCurve>,
+    /// Wall-clock milliseconds.
+    pub ms: f64,
+    /// Threads.
+    pub threads: usize,
+}
+
+impl EventsReport {
+    /// The report of a run.
+    pub fn new(model: &str, ev: &Events, ms: f64, threads: usize) -> EventsReport {
+        EventsReport {
+            model: model.to_string(),
+            sources_certified: ev.sources_certified(),
+            families: ev
+                .uncertified
+                .iter()
+                .map(|&(kind, c, u)| FamilySummary {
+                    kind,
+                    curves: ev.curves.iter().filter(|x| x.kind == kind).count(),
+                    uncertified_curves: c,
+                    unresolved: u,
+                })
+                .collect(),
+            curves: ev.curves.clone(),
+            ms,
+            threads,
+        }
+    }
+
+    /// A short human-readable summary.
+    pub fn text(&self) -> String {
+        let mut out = format!(
+            "{}: {} event curves on the viewing sphere (each with its antipode), sources {}\n",
+            self.model,
+            self.curves.len(),
+            if self.sources_certified {
+                "certified"
+            } else {
+                "NOT all certified"
+            }
+        );
+        for f in &self.families {
+            out += &format!(
+                "  {:?}: {} curves, {} with uncertified source, {} unresolved boxes in the source\n",
+                f.kind, f.curves, f.uncertified_curves, f.unresolved
+            );
+        }
+        out += &format!("{:.1} ms on {} threads\n", self.ms, self.threads);
+        out
+    }
+}
