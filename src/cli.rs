@@ -9,13 +9,13 @@ use crate::analysis::flecnodal_curves::{flecnodal_curves, FlecnodalOptions};
 use crate::analysis::flecnodal_report::FlecnodalReport;
 use crate::analysis::hlr::{hidden_lines, HlrOptions, HlrReport};
 use crate::analysis::parabolic::parabolic;
+use crate::analysis::render::CurveDocument;
 use crate::analysis::render::{hlr_svg, silhouette_obj, silhouette_svg, visible_svg};
 use crate::analysis::silhouette::{parse_vector, silhouette, Silhouette, SilhouetteReport, View};
 use crate::analysis::silhouette_certificate::{check_silhouette, SilhouetteCertificate};
 use crate::analysis::visible::{visible_regions, VisibleOptions, VisibleReport};
 use crate::io::{read_model, read_model_bytes};
 use crate::model::{default_weld, Format, ModelInfo, WeldTolerance};
-use crate::solver::curve_n::SpaceCurveOptions;
 use crate::solver::CurveOptions;
 use clap::{Parser, Subcommand, ValueEnum};
 use std::io::Write;
@@ -428,61 +428,44 @@ where
                 tol_abs,
             } = load(&model, &run)?;
             let start = std::time::Instant::now();
-            if kind == CurveKind::Flecnodal {
-                let fopts = FlecnodalOptions {
-                    solver: SpaceCurveOptions {
-                        deadline: opts.deadline,
-                        ..FlecnodalOptions::with_tolerance(tol_abs).solver
-                    },
-                    tolerance: tol_abs,
-                };
-                let r = pool.install(|| flecnodal_curves(&m, &fopts));
-                let ms = start.elapsed().as_secs_f64() * 1e3;
-                let report =
-                    FlecnodalReport::new(&name, &r, tol_abs, ms, pool.current_num_threads());
-                let text = match format {
-                    CurveFormat::Json => pretty_json(&report)?,
-                    CurveFormat::Text => report.text(),
-                    CurveFormat::Svg => report.svg(&m, &projection),
-                    CurveFormat::Obj => report.obj(),
-                };
-                return write_output(run.output, &text, out);
-            }
-            if kind == CurveKind::Bitangent {
-                let defaults = BitangentOptions::with_tolerance(tol_abs);
-                let bopts = BitangentOptions {
-                    solver: SpaceCurveOptions {
-                        deadline: opts.deadline,
-                        ..defaults.solver.clone()
-                    },
-                    ..defaults
-                };
-                let r = pool.install(|| bitangent_curves(&m, &bopts));
-                let ms = start.elapsed().as_secs_f64() * 1e3;
-                let report =
-                    BitangentReport::new(&name, &r, tol_abs, ms, pool.current_num_threads());
-                let text = match format {
-                    CurveFormat::Json => pretty_json(&report)?,
-                    CurveFormat::Text => report.text(),
-                    CurveFormat::Svg => report.svg(&m, &projection),
-                    CurveFormat::Obj => report.obj(),
-                };
-                return write_output(run.output, &text, out);
-            }
-            let (label, s) = (
-                "parabolic",
-                pool.install(|| parabolic(&m, &opts, weld, tol_abs)),
-            );
-            let ms = start.elapsed().as_secs_f64() * 1e3;
-            let report = SilhouetteReport::of_curves(
-                &name,
-                label,
-                serde_json::Value::Null,
-                &s,
-                ms,
-                pool.current_num_threads(),
-            );
-            let text = render_silhouette(format, &report, &m, &projection, &s)?;
+            let threads = pool.current_num_threads();
+            let document: Box<dyn CurveDocument> = match kind {
+                CurveKind::Flecnodal => {
+                    let o = FlecnodalOptions::with_tolerance(tol_abs).with_deadline(opts.deadline);
+                    let r = pool.install(|| flecnodal_curves(&m, &o));
+                    let ms = start.elapsed().as_secs_f64() * 1e3;
+                    Box::new(FlecnodalReport::new(&name, &r, tol_abs, ms, threads))
+                }
+                CurveKind::Bitangent => {
+                    let o = BitangentOptions::with_tolerance(tol_abs).with_deadline(opts.deadline);
+                    let r = pool.install(|| bitangent_curves(&m, &o));
+                    let ms = start.elapsed().as_secs_f64() * 1e3;
+                    Box::new(BitangentReport::new(&name, &r, tol_abs, ms, threads))
+                }
+                CurveKind::Parabolic => {
+                    let s = pool.install(|| parabolic(&m, &opts, weld, tol_abs));
+                    let ms = start.elapsed().as_secs_f64() * 1e3;
+                    let report = SilhouetteReport::of_curves(
+                        &name,
+                        "parabolic",
+                        serde_json::Value::Null,
+                        &s,
+                        ms,
+                        threads,
+                    );
+                    let text = render_silhouette(format, &report, &m, &projection, &s)?;
+                    return write_output(run.output, &text, out);
+                }
+            };
+            let text = match format {
+                CurveFormat::Json => document.json().map_err(|e| CliError {
+                    message: format!("cannot write JSON: {e}"),
+                    code: 1,
+                })?,
+                CurveFormat::Text => document.text(),
+                CurveFormat::Svg => document.svg(&m, &projection),
+                CurveFormat::Obj => document.obj(),
+            };
             write_output(run.output, &text, out)
         }
         Command::Events {
@@ -523,26 +506,10 @@ where
             let deadline = opts.deadline;
             let eopts = EventOptions {
                 parabolic: wanted[0].then(|| (opts.clone(), weld, tol_abs)),
-                flecnodal: wanted[1].then(|| {
-                    let d = FlecnodalOptions::with_tolerance(tol_abs);
-                    FlecnodalOptions {
-                        solver: SpaceCurveOptions {
-                            deadline,
-                            ..d.solver.clone()
-                        },
-                        ..d
-                    }
-                }),
-                bitangent: wanted[2].then(|| {
-                    let d = BitangentOptions::with_tolerance(tol_abs);
-                    BitangentOptions {
-                        solver: SpaceCurveOptions {
-                            deadline,
-                            ..d.solver.clone()
-                        },
-                        ..d
-                    }
-                }),
+                flecnodal: wanted[1]
+                    .then(|| FlecnodalOptions::with_tolerance(tol_abs).with_deadline(deadline)),
+                bitangent: wanted[2]
+                    .then(|| BitangentOptions::with_tolerance(tol_abs).with_deadline(deadline)),
             };
             let ev = pool.install(|| events(&m, &eopts));
             let ms = start.elapsed().as_secs_f64() * 1e3;

@@ -47,6 +47,13 @@ impl Default for BitangentOptions {
 }
 
 impl BitangentOptions {
+    /// The same options with a wall-clock deadline for the solver (past it, no box is
+    /// subdivided and no further patch or pair is started).
+    pub fn with_deadline(mut self, deadline: Option<std::time::Instant>) -> BitangentOptions {
+        self.solver.deadline = deadline;
+        self
+    }
+
     /// The defaults for a model: per pair 10,000 boxes for the topology, 50,000 with a
     /// tolerance, to depth 20 (a curve that turns very near a grid plane needs small boxes
     /// there; on two spheres one such turn needed depth 17). A pair with a plane tangent along

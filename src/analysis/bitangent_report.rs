@@ -3,7 +3,8 @@
 
 use super::bitangent_curves::{BitangentCurves, BitangentUnresolved};
 use super::render::{
-    draw_patches, obj_polyline, outline_layer, reason_lines, svg_document, Layer, Projection,
+    draw_patches, obj_polyline, outline_layer, reason_lines, svg_document, verdict_lines, Layer,
+    Projection, Work,
 };
 use super::silhouette::View;
 use crate::model::Model;
@@ -49,16 +50,9 @@ pub struct BitangentStats {
     pub curves: usize,
     /// Pairs of points on them.
     pub points: usize,
-    /// Boxes examined by the curve solver, all pairs.
-    pub boxes: usize,
-    /// Boxes whose polynomials were recomputed exactly.
-    pub escalations: usize,
-    /// Unresolved boxes.
-    pub unresolved: usize,
-    /// Wall-clock milliseconds.
-    pub ms: f64,
-    /// Threads.
-    pub threads: usize,
+    /// The solver's work (flattened into `stats`).
+    #[serde(flatten)]
+    pub work: Work,
 }
 
 /// The document of `limn curves --kind bitangent`.
@@ -133,11 +127,13 @@ impl BitangentReport {
                 pairs_solved: r.pairs.len(),
                 curves: curves.len(),
                 points: curves.iter().map(|c| c.points.len()).sum(),
-                boxes: r.pairs.iter().map(|p| p.boxes).sum(),
-                escalations: r.pairs.iter().map(|p| p.escalations).sum(),
-                unresolved: unresolved.len(),
-                ms,
-                threads,
+                work: Work {
+                    boxes: r.pairs.iter().map(|p| p.boxes).sum(),
+                    escalations: r.pairs.iter().map(|p| p.escalations).sum(),
+                    unresolved: unresolved.len(),
+                    ms,
+                    threads,
+                },
             },
             curves,
             unresolved,
@@ -147,31 +143,18 @@ impl BitangentReport {
     /// A short human-readable summary.
     pub fn text(&self) -> String {
         let s = &self.stats;
-        let mut out = format!(
-            "{}: {} bitangent curves ({} pairs of points) on {} patches, {}\n",
-            self.model,
-            s.curves,
-            s.points,
-            s.patches,
-            if self.certified {
-                "certified".to_string()
-            } else {
-                format!(
-                    "NOT fully certified: {} unresolved boxes, {} incomplete curves{}",
-                    s.unresolved,
-                    self.curves.iter().filter(|c| !c.complete).count(),
-                    match (self.tolerance, self.error_bound) {
-                        (Some(t), Some(e)) if e > t =>
-                            format!(", error bound {e:.3e} above the tolerance"),
-                        (Some(_), None) => ", no error bound".to_string(),
-                        _ => String::new(),
-                    }
-                )
-            }
+        let (verdict, bound) = verdict_lines(
+            self.certified,
+            s.work.unresolved,
+            self.curves.iter().filter(|c| !c.complete).count(),
+            "",
+            self.tolerance,
+            self.error_bound,
         );
-        if let (Some(t), Some(e)) = (self.tolerance, self.error_bound) {
-            out += &format!("tolerance {t:.3e}, proven error bound {e:.3e}\n");
-        }
+        let mut out = format!(
+            "{}: {} bitangent curves ({} pairs of points) on {} patches, {verdict}\n{bound}",
+            self.model, s.curves, s.points, s.patches
+        );
         out += &format!(
             "{} pairs of patches: {} pruned by their normal cones, {} patches without self-bitangents (diagonal lemma), {} solved\n",
             s.pairs, s.pairs_pruned, s.self_pairs_excluded, s.pairs_solved
@@ -185,10 +168,7 @@ impl BitangentReport {
             }),
             "pairs",
         );
-        out += &format!(
-            "{} boxes, {} escalations, {:.1} ms on {} threads\n",
-            s.boxes, s.escalations, s.ms, s.threads
-        );
+        out += &s.work.line();
         out
     }
 
@@ -245,7 +225,7 @@ impl BitangentReport {
             if self.certified {
                 "certified".to_string()
             } else {
-                format!("{} unresolved boxes (red)", self.stats.unresolved)
+                format!("{} unresolved boxes (red)", self.stats.work.unresolved)
             }
         );
         svg_document(&title, &layers, &marks)
@@ -269,3 +249,5 @@ impl BitangentReport {
         out
     }
 }
+
+super::render::curve_document!(BitangentReport);

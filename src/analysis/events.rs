@@ -12,7 +12,7 @@
 //! topology is certified gives a sphere curve whose pieces are certified to be images of whole
 //! curves. The drawn directions are f64 evaluations at the source's proven points: they are not
 //! enclosed, and no distance bound on the sphere is claimed. A view direction and its opposite
-//! see the same events, so both antipodes are drawn.
+//! see the same events, so both antipodes are drawn (`proofs/events.md`).
 
 use super::bitangent_curves::{bitangent_curves, BitangentOptions};
 use super::flecnodal_curves::{flecnodal_curves, FlecnodalOptions};

@@ -39,6 +39,13 @@ pub struct FlecnodalOptions {
 }
 
 impl FlecnodalOptions {
+    /// The same options with a wall-clock deadline for the solver (past it, no box is
+    /// subdivided and no further patch or pair is started).
+    pub fn with_deadline(mut self, deadline: Option<std::time::Instant>) -> FlecnodalOptions {
+        self.solver.deadline = deadline;
+        self
+    }
+
     /// The defaults for a model: budgets that bound the time on a bad patch (per chart 5,000
     /// boxes to depth 12 for the topology; with a tolerance 50,000 to depth 16, since the
     /// chords must be short).

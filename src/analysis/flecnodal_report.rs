@@ -3,7 +3,8 @@
 
 use super::flecnodal_curves::{FlecnodalCurves, FlecnodalUnresolved};
 use super::render::{
-    draw_patches, obj_polyline, outline_layer, reason_lines, svg_document, Layer, Projection,
+    draw_patches, obj_polyline, outline_layer, reason_lines, svg_document, verdict_lines, Layer,
+    Projection, Work,
 };
 use super::silhouette::View;
 use crate::model::Model;
@@ -57,16 +58,9 @@ pub struct FlecnodalStats {
     pub curves: usize,
     /// Points on them.
     pub points: usize,
-    /// Boxes examined by the curve solver, both charts, all patches.
-    pub boxes: usize,
-    /// Boxes whose polynomials were recomputed exactly.
-    pub escalations: usize,
-    /// Unresolved boxes.
-    pub unresolved: usize,
-    /// Wall-clock milliseconds.
-    pub ms: f64,
-    /// Threads.
-    pub threads: usize,
+    /// The solver's work (flattened into `stats`).
+    #[serde(flatten)]
+    pub work: Work,
 }
 
 /// The document of `limn curves --kind flecnodal`.
@@ -160,11 +154,13 @@ impl FlecnodalReport {
                 patches: r.patches.len(),
                 curves: curves.len(),
                 points: curves.iter().map(|c| c.points.len()).sum(),
-                boxes: r.patches.iter().map(|p| p.boxes).sum(),
-                escalations: r.patches.iter().map(|p| p.escalations).sum(),
-                unresolved: unresolved.len(),
-                ms,
-                threads,
+                work: Work {
+                    boxes: r.patches.iter().map(|p| p.boxes).sum(),
+                    escalations: r.patches.iter().map(|p| p.escalations).sum(),
+                    unresolved: unresolved.len(),
+                    ms,
+                    threads,
+                },
             },
             curves,
             unresolved,
@@ -176,31 +172,18 @@ impl FlecnodalReport {
     /// A short human-readable summary.
     pub fn text(&self) -> String {
         let s = &self.stats;
-        let mut out = format!(
-            "{}: {} flecnodal curves ({} points) on {} patches, {}\n",
-            self.model,
-            s.curves,
-            s.points,
-            s.patches,
-            if self.certified {
-                "certified".to_string()
-            } else {
-                format!(
-                    "NOT fully certified: {} unresolved boxes, {} incomplete curves, {} degenerate patches{}",
-                    s.unresolved,
-                    self.curves.iter().filter(|c| !c.complete).count(),
-                    self.degenerate.len(),
-                    match (self.tolerance, self.error_bound) {
-                        (Some(t), Some(e)) if e > t => format!(", error bound {e:.3e} above the tolerance"),
-                        (Some(_), None) => ", no error bound".to_string(),
-                        _ => String::new(),
-                    }
-                )
-            }
+        let (verdict, bound) = verdict_lines(
+            self.certified,
+            s.work.unresolved,
+            self.curves.iter().filter(|c| !c.complete).count(),
+            &format!(", {} degenerate patches", self.degenerate.len()),
+            self.tolerance,
+            self.error_bound,
         );
-        if let (Some(t), Some(e)) = (self.tolerance, self.error_bound) {
-            out += &format!("tolerance {t:.3e}, proven error bound {e:.3e}\n");
-        }
+        let mut out = format!(
+            "{}: {} flecnodal curves ({} points) on {} patches, {verdict}\n{bound}",
+            self.model, s.curves, s.points, s.patches
+        );
         out += &reason_lines(
             self.unresolved.iter().map(|u| (u.reason.as_str(), u.patch)),
             "patches",
@@ -214,10 +197,7 @@ impl FlecnodalReport {
                 u.patch, u.side
             );
         }
-        out += &format!(
-            "{} boxes, {} escalations, {:.1} ms on {} threads\n",
-            s.boxes, s.escalations, s.ms, s.threads
-        );
+        out += &s.work.line();
         out
     }
 
@@ -258,7 +238,7 @@ impl FlecnodalReport {
             if self.certified {
                 "certified".to_string()
             } else {
-                format!("{} unresolved boxes (red)", self.stats.unresolved)
+                format!("{} unresolved boxes (red)", self.stats.work.unresolved)
             }
         );
         svg_document(&title, &layers, &marks)
@@ -280,3 +260,5 @@ impl FlecnodalReport {
         out
     }
 }
+
+super::render::curve_document!(FlecnodalReport);

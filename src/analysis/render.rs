@@ -416,3 +416,95 @@ pub(crate) fn reason_lines<'a, K: Ord + std::fmt::Display>(
     }
     out
 }
+
+/// A report of curves that `limn curves` writes in its four formats.
+pub trait CurveDocument {
+    /// The JSON document (pretty-printed).
+    fn json(&self) -> serde_json::Result<String>;
+    /// A short human-readable summary.
+    fn text(&self) -> String;
+    /// The curves drawn along a view direction.
+    fn svg(&self, model: &Model, view: &View) -> String;
+    /// The curves as OBJ polylines.
+    fn obj(&self) -> String;
+}
+
+/// Implements [`CurveDocument`] by the report's own methods of the same names.
+macro_rules! curve_document {
+    ($t:ty) => {
+        impl $crate::analysis::render::CurveDocument for $t {
+            fn json(&self) -> serde_json::Result<String> {
+                serde_json::to_string_pretty(self).map(|s| s + "\n")
+            }
+            fn text(&self) -> String {
+                <$t>::text(self)
+            }
+            fn svg(
+                &self,
+                model: &$crate::model::Model,
+                view: &$crate::analysis::silhouette::View,
+            ) -> String {
+                <$t>::svg(self, model, view)
+            }
+            fn obj(&self) -> String {
+                <$t>::obj(self)
+            }
+        }
+    };
+}
+pub(crate) use curve_document;
+
+/// The work of a run of the curve solver, in the `stats` of the curve reports.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct Work {
+    /// Boxes examined by the curve solver.
+    pub boxes: usize,
+    /// Boxes whose polynomials were recomputed exactly.
+    pub escalations: usize,
+    /// Unresolved boxes.
+    pub unresolved: usize,
+    /// Wall-clock milliseconds.
+    pub ms: f64,
+    /// Threads.
+    pub threads: usize,
+}
+
+impl Work {
+    /// The line that ends a report's text.
+    pub fn line(&self) -> String {
+        format!(
+            "{} boxes, {} escalations, {:.1} ms on {} threads\n",
+            self.boxes, self.escalations, self.ms, self.threads
+        )
+    }
+}
+
+/// The verdict of a curve report's first line ("certified", or what is missing), and the
+/// tolerance line that follows it when there is a bound (`extra`: more counts, each starting
+/// with ", ").
+pub(crate) fn verdict_lines(
+    certified: bool,
+    unresolved: usize,
+    incomplete: usize,
+    extra: &str,
+    tolerance: Option<f64>,
+    error_bound: Option<f64>,
+) -> (String, String) {
+    let verdict = if certified {
+        "certified".to_string()
+    } else {
+        format!(
+            "NOT fully certified: {unresolved} unresolved boxes, {incomplete} incomplete curves{extra}{}",
+            match (tolerance, error_bound) {
+                (Some(t), Some(e)) if e > t => format!(", error bound {e:.3e} above the tolerance"),
+                (Some(_), None) => ", no error bound".to_string(),
+                _ => String::new(),
+            }
+        )
+    };
+    let bound = match (tolerance, error_bound) {
+        (Some(t), Some(e)) => format!("tolerance {t:.3e}, proven error bound {e:.3e}\n"),
+        _ => String::new(),
+    };
+    (verdict, bound)
+}

@@ -357,8 +357,11 @@ fn face_roots(face: Vec<Bernstein<Interval>>, opts: &SystemOptions) -> Option<Ve
                 continue;
             }
             // A zero near the sub-box's sides: the test on the grown box (not on the whole
-            // face, which is subdivided first: the grown test costs a restriction).
-            if depth >= 1 {
+            // face, which is subdivided first: the grown test costs a restriction). Tried only
+            // where Newton's method from the centre (f64, a guess: the test decides) ends in the
+            // margin of the grown box, not deep inside the box (where growing does not help)
+            // nor far away.
+            if depth >= 1 && near_the_sides(&polys) {
                 let grown_lo: Vec<f64> =
                     lo.iter().zip(&hi).map(|(a, b)| a - (b - a) / 8.0).collect();
                 let grown_hi: Vec<f64> =
@@ -417,6 +420,20 @@ fn face_roots(face: Vec<Bernstein<Interval>>, opts: &SystemOptions) -> Option<Ve
         }
     }
     Some(out)
+}
+
+/// Whether Newton's method (f64, from the centre of the polynomials' unit box) ends within
+/// 1/8 of the box's sides, inside or out: where a grown box may isolate a zero the box itself
+/// could not.
+fn near_the_sides(polys: &[Bernstein<Interval>]) -> bool {
+    let f: Vec<Bernstein<f64>> = polys
+        .iter()
+        .map(|p| p.map(|x| 0.5 * (x.lo() + x.hi())))
+        .collect();
+    newton(&f, vec![0.5; polys.len()], 6).is_some_and(|x| {
+        x.iter().all(|&t| (-0.125..=1.125).contains(&t))
+            && x.iter().any(|&t| !(0.125..=0.875).contains(&t))
+    })
 }
 
 /// Narrows a zero's Krawczyk image `k` (in the polynomials' own unit coordinates; the zero
