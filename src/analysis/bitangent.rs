@@ -585,3 +585,26 @@ pub fn seam_excludes(
     let det = m[0][0].mul(&m[1][1]).sub(&m[0][1].mul(&m[1][0]));
     !det.contains(0.0)
 }
+
+/// Whether no normal of `S` over the box `B₁` is parallel (or opposite) to a normal of `R`
+/// over `B₂` (some coordinate of the interval cross product has a strict sign), with `R`'s
+/// tangents proven independent over `B₂`: then no pair in `B₁ × B₂` solves the system
+/// (`proofs/bitangent.md`, Lemma 4, per box).
+pub fn normals_apart(
+    first: &DiagonalTest,
+    second: &DiagonalTest,
+    b1: ([f64; 2], [f64; 2]),
+    b2: ([f64; 2], [f64; 2]),
+) -> bool {
+    let (Some(a), Some(b)) = (
+        first.normal_range(b1.0, b1.1),
+        second.normal_range(b2.0, b2.1),
+    ) else {
+        return false;
+    };
+    let apart = (0..3).any(|k| {
+        let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+        !a[i].mul(&b[j]).sub(&a[j].mul(&b[i])).contains(0.0)
+    });
+    apart && second.tangents_independent(b2.0, b2.1)
+}

@@ -13,7 +13,8 @@
 //! enclosures overlap at `coincidence_depth` are reported unresolved.
 
 use super::bitangent::{
-    bitangent_system, deflated_normal, mirror_dropped, seam_excludes, shared_sides, DiagonalTest,
+    bitangent_system, deflated_normal, mirror_dropped, normals_apart, seam_excludes, shared_sides,
+    DiagonalTest,
 };
 use super::patch_curve::{Accuracy, Evaluator};
 use crate::model::Model;
@@ -359,6 +360,9 @@ pub fn pair_bitangents(
         }
         let (lo1, hi1) = params(same, cell, 0);
         let (lo2, hi2) = params(same, cell, 2);
+        if depth >= 1 && normals_apart(&sides[0].jets, &sides[1].jets, (lo1, hi1), (lo2, hi2)) {
+            return BoxVerdict::Drop;
+        }
         if same && depth >= 1 {
             let lo = [lo1[0].min(lo2[0]), lo1[1].min(lo2[1])];
             let hi = [hi1[0].max(hi2[0]), hi1[1].max(hi2[1])];
