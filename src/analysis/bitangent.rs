@@ -525,8 +525,10 @@ pub fn seam_excludes(
     b2: ([f64; 2], [f64; 2]),
 ) -> bool {
     let (c_lo, c_hi) = side.box_to(b2.0, b2.1, SharedSide::to_composite);
-    let lo = [b1.0[0].min(c_lo[0]), b1.0[1].min(c_lo[1])];
-    let hi = [b1.1[0].max(c_hi[0]), b1.1[1].max(c_hi[1])];
+    // Widened by more than the rounding of `1 − r` in the maps, so that the parts cover both
+    // boxes.
+    let lo = [b1.0[0].min(c_lo[0]) - 1e-14, b1.0[1].min(c_lo[1]) - 1e-14];
+    let hi = [b1.1[0].max(c_hi[0]) + 1e-14, b1.1[1].max(c_hi[1]) + 1e-14];
     if hi[0] - lo[0] > 0.5 || hi[1] - lo[1] > 0.5 {
         return false;
     }
