@@ -19,7 +19,8 @@
 use super::curve2::TIME_LIMIT_REASON;
 use super::dyadic::Dyadic;
 use super::system::{
-    inverse, krawczyk, newton, split_box, worth_testing, DyadicBoxN, SystemOptions,
+    inverse, krawczyk, krawczyk_verdict, newton, split_box, DyadicBoxN, KrawczykVerdict,
+    SystemOptions,
 };
 use crate::bernstein::Bernstein;
 use crate::number::{Interval, Number, Precision, Rational};
@@ -340,8 +341,13 @@ fn face_roots(face: Vec<Bernstein<Interval>>, opts: &SystemOptions) -> Option<Ve
         if polys.iter().any(excludes) {
             continue;
         }
-        if worth_testing(&polys) {
-            if let Some(k) = krawczyk(&polys) {
+        // Krawczyk's operator: one zero (found), none (`K` misses the box), or undecided.
+        let verdict = krawczyk_verdict(&polys);
+        if matches!(verdict, KrawczykVerdict::NoZero) {
+            continue;
+        }
+        if !matches!(verdict, KrawczykVerdict::Unknown { worth: false }) {
+            if let KrawczykVerdict::Unique(k) = verdict {
                 let unique: Vec<[f64; 2]> = lo.iter().zip(&hi).map(|(a, b)| [*a, *b]).collect();
                 let enc = refine_local(&polys, k, &lo, &hi, opts.refine_width);
                 // Found already by a grown test of a neighbouring sub-box?

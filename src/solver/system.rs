@@ -128,14 +128,24 @@ pub(crate) fn inverse(m: &[Vec<f64>]) -> Option<Vec<Vec<f64>>> {
 /// those coordinates) if `K ⊂ (0, 1)^n` strictly, which proves exactly one zero in the box,
 /// inside K.
 pub fn krawczyk(square: &[Bernstein<Interval>]) -> Option<Vec<Interval>> {
+    let (c, m) = preconditioned(square)?;
+    let k = krawczyk_image(square, &c, &m);
+    k.iter().all(|x| x.lo() > 0.0 && x.hi() < 1.0).then_some(k)
+}
+
+/// The image `K = y − C f(y) + (I − C J)([0,1]^n − y)` of Krawczyk's operator.
+fn krawczyk_image(
+    square: &[Bernstein<Interval>],
+    c: &Matrix,
+    m: &[Vec<Interval>],
+) -> Vec<Interval> {
     let n = square.len();
     let half = Interval::point(0.5);
     let y = vec![half; n];
     let fy: Vec<Interval> = square.iter().map(|f| f.eval(&y)).collect();
-    let (c, m) = preconditioned(square)?;
     let dx = Interval::new(-0.5, 0.5);
     let mut k = Vec::with_capacity(n);
-    for (ci, mi) in c.iter().zip(&m) {
+    for (ci, mi) in c.iter().zip(m) {
         let mut acc = half;
         for (cij, fyj) in ci.iter().zip(&fy) {
             acc = acc.sub(&Interval::point(*cij).mul(fyj));
@@ -143,12 +153,46 @@ pub fn krawczyk(square: &[Bernstein<Interval>]) -> Option<Vec<Interval>> {
         for mij in mi {
             acc = acc.add(&mij.mul(&dx));
         }
-        if !(acc.lo() > 0.0 && acc.hi() < 1.0) {
-            return None;
-        }
         k.push(acc);
     }
-    Some(k)
+    k
+}
+
+/// What Krawczyk's operator proves on the unit box of the polynomials' own coordinates
+/// (`proofs/krawczyk.md`).
+pub(crate) enum KrawczykVerdict {
+    /// Exactly one zero, inside `K`.
+    Unique(Vec<Interval>),
+    /// `K` misses the box: no zero in it.
+    NoZero,
+    /// Neither; `worth` is [`worth_testing`]'s answer for this box.
+    Unknown { worth: bool },
+}
+
+/// Krawczyk's operator on the box, once: a unique zero, none, or nothing proven.
+pub(crate) fn krawczyk_verdict(square: &[Bernstein<Interval>]) -> KrawczykVerdict {
+    let Some((c, m)) = preconditioned(square) else {
+        return KrawczykVerdict::Unknown { worth: false };
+    };
+    let k = krawczyk_image(square, &c, &m);
+    if k.iter().any(|x| x.hi() < 0.0 || x.lo() > 1.0) {
+        return KrawczykVerdict::NoZero;
+    }
+    let worth = rows_contract(&m);
+    if worth && k.iter().all(|x| x.lo() > 0.0 && x.hi() < 1.0) {
+        return KrawczykVerdict::Unique(k);
+    }
+    KrawczykVerdict::Unknown { worth }
+}
+
+/// Every row of `|I − C J|` sums to less than 1.
+fn rows_contract(m: &[Vec<Interval>]) -> bool {
+    m.iter().all(|row| {
+        row.iter()
+            .map(|x| x.lo().abs().max(x.hi().abs()))
+            .sum::<f64>()
+            < 1.0
+    })
 }
 
 /// A dense f64 matrix, by rows.
@@ -190,14 +234,7 @@ fn preconditioned(square: &[Bernstein<Interval>]) -> Option<(Matrix, Vec<Vec<Int
 /// It only decides whether to run the (costly) test; a box that fails it is subdivided, never
 /// decided by it.
 pub(crate) fn worth_testing(square: &[Bernstein<Interval>]) -> bool {
-    preconditioned(square).is_some_and(|(_, m)| {
-        m.iter().all(|row| {
-            row.iter()
-                .map(|x| x.lo().abs().max(x.hi().abs()))
-                .sum::<f64>()
-                < 1.0
-        })
-    })
+    preconditioned(square).is_some_and(|(_, m)| rows_contract(&m))
 }
 
 /// The polynomials restricted to a box given in their current coordinates by f64 bounds
