@@ -3,8 +3,7 @@
 
 use super::bitangent_curves::{BitangentCurves, BitangentUnresolved};
 use super::render::{
-    draw_patches, obj_polyline, outline_layer, reason_lines, svg_document, verdict_lines, Layer,
-    Projection, Work,
+    curves_svg, obj_polyline, reason_lines, verdict_lines, Work, INCOMPLETE_STYLE,
 };
 use super::silhouette::View;
 use crate::model::Model;
@@ -176,47 +175,24 @@ impl BitangentReport {
     /// first points blue, second points green, incomplete curves red and dashed, the centres of
     /// unresolved boxes marked in red.
     pub fn svg(&self, model: &Model, view: &View) -> String {
-        let proj = Projection::new(view, model);
-        let draw = draw_patches(model);
-        let path = |points: &[[f64; 3]], closed: bool| {
-            let mut p: Vec<[f64; 2]> = points.iter().map(|x| proj.project(*x)).collect();
-            if closed {
-                if let Some(f) = p.first().copied() {
-                    p.push(f);
-                }
-            }
-            p
-        };
         let (complete, incomplete): (Vec<&BitangentCurve>, Vec<&BitangentCurve>) =
             self.curves.iter().partition(|c| c.complete);
-        let layers = [
-            outline_layer(&draw, &proj),
-            Layer {
-                style: r##"stroke="#04c" stroke-width="1.6""##,
-                paths: complete.iter().map(|c| path(&c.points, c.closed)).collect(),
-                filled: false,
-            },
-            Layer {
-                style: r##"stroke="#0a4" stroke-width="1.6""##,
-                paths: complete
-                    .iter()
-                    .map(|c| path(&c.points_second, c.closed))
-                    .collect(),
-                filled: false,
-            },
-            Layer {
-                style: r##"stroke="#d00" stroke-width="1.6" stroke-dasharray="6,3""##,
-                paths: incomplete
-                    .iter()
-                    .flat_map(|c| [path(&c.points, c.closed), path(&c.points_second, c.closed)])
-                    .collect(),
-                filled: false,
-            },
-        ];
-        let marks: Vec<[f64; 2]> = self
-            .unresolved
+        let firsts = complete
             .iter()
-            .flat_map(|u| u.at.map(|a| proj.project(a)))
+            .map(|c| (c.points.as_slice(), c.closed))
+            .collect();
+        let seconds = complete
+            .iter()
+            .map(|c| (c.points_second.as_slice(), c.closed))
+            .collect();
+        let open = incomplete
+            .iter()
+            .flat_map(|c| {
+                [
+                    (c.points.as_slice(), c.closed),
+                    (c.points_second.as_slice(), c.closed),
+                ]
+            })
             .collect();
         let title = format!(
             "{}: {} bitangent curves (first points blue, second green), {}",
@@ -228,7 +204,18 @@ impl BitangentReport {
                 format!("{} unresolved boxes (red)", self.stats.work.unresolved)
             }
         );
-        svg_document(&title, &layers, &marks)
+        let marks: Vec<[f64; 3]> = self.unresolved.iter().flat_map(|u| u.at).collect();
+        curves_svg(
+            model,
+            view,
+            &title,
+            vec![
+                (r##"stroke="#04c" stroke-width="1.6""##, firsts),
+                (r##"stroke="#0a4" stroke-width="1.6""##, seconds),
+                (INCOMPLETE_STYLE, open),
+            ],
+            &marks,
+        )
     }
 
     /// The curves as OBJ polylines: per curve, the first points' polyline, then the second's.

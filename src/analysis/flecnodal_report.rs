@@ -3,11 +3,15 @@
 
 use super::flecnodal_curves::{FlecnodalCurves, FlecnodalUnresolved};
 use super::render::{
-    draw_patches, obj_polyline, outline_layer, reason_lines, svg_document, verdict_lines, Layer,
-    Projection, Work,
+    curves_svg, obj_polyline, reason_lines, verdict_lines, Work, INCOMPLETE_STYLE,
 };
 use super::silhouette::View;
 use crate::model::Model;
+
+/// The polylines of curves, with whether each is closed.
+fn lines<'a>(cs: &[&'a FlecnodalCurve]) -> Vec<(&'a [[f64; 3]], bool)> {
+    cs.iter().map(|c| (c.points.as_slice(), c.closed)).collect()
+}
 
 /// One flecnodal curve of the report.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
@@ -204,33 +208,8 @@ impl FlecnodalReport {
     /// The curves drawn in the view plane over the patches' sides in grey: complete curves
     /// green, incomplete ones red and dashed, the centres of unresolved boxes marked in red.
     pub fn svg(&self, model: &Model, view: &View) -> String {
-        let proj = Projection::new(view, model);
-        let draw = draw_patches(model);
-        let path = |c: &FlecnodalCurve| {
-            let mut p: Vec<[f64; 2]> = c.points.iter().map(|x| proj.project(*x)).collect();
-            if c.closed {
-                if let Some(f) = p.first().copied() {
-                    p.push(f);
-                }
-            }
-            p
-        };
         let (complete, incomplete): (Vec<&FlecnodalCurve>, Vec<&FlecnodalCurve>) =
             self.curves.iter().partition(|c| c.complete);
-        let layers = [
-            outline_layer(&draw, &proj),
-            Layer {
-                style: r##"stroke="#0a4" stroke-width="1.6""##,
-                paths: complete.into_iter().map(path).collect(),
-                filled: false,
-            },
-            Layer {
-                style: r##"stroke="#d00" stroke-width="1.6" stroke-dasharray="6,3""##,
-                paths: incomplete.into_iter().map(path).collect(),
-                filled: false,
-            },
-        ];
-        let marks: Vec<[f64; 2]> = self.unresolved.iter().map(|u| proj.project(u.at)).collect();
         let title = format!(
             "{}: {} flecnodal curves, {}",
             self.model,
@@ -241,7 +220,17 @@ impl FlecnodalReport {
                 format!("{} unresolved boxes (red)", self.stats.work.unresolved)
             }
         );
-        svg_document(&title, &layers, &marks)
+        let marks: Vec<[f64; 3]> = self.unresolved.iter().map(|u| u.at).collect();
+        curves_svg(
+            model,
+            view,
+            &title,
+            vec![
+                (r##"stroke="#0a4" stroke-width="1.6""##, lines(&complete)),
+                (INCOMPLETE_STYLE, lines(&incomplete)),
+            ],
+            &marks,
+        )
     }
 
     /// The curves as OBJ polylines.

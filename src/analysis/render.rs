@@ -508,3 +508,46 @@ pub(crate) fn verdict_lines(
     };
     (verdict, bound)
 }
+
+/// The dashed red style of curves that are not complete.
+pub(crate) const INCOMPLETE_STYLE: &str =
+    r##"stroke="#d00" stroke-width="1.6" stroke-dasharray="6,3""##;
+
+/// Polylines in space, each with whether it is closed.
+pub(crate) type SpaceLines<'a> = Vec<(&'a [[f64; 3]], bool)>;
+
+/// Polylines in space drawn along a view direction over the patches' sides in grey: each layer
+/// a style and its polylines (closed ones joined back to their first point), and red marks at
+/// the given points.
+pub(crate) fn curves_svg(
+    model: &Model,
+    view: &View,
+    title: &str,
+    layers: Vec<(&'static str, SpaceLines)>,
+    marks: &[[f64; 3]],
+) -> String {
+    let proj = Projection::new(view, model);
+    let draw = draw_patches(model);
+    let mut all = vec![outline_layer(&draw, &proj)];
+    for (style, lines) in layers {
+        let paths = lines
+            .into_iter()
+            .map(|(points, closed)| {
+                let mut p: Vec<[f64; 2]> = points.iter().map(|x| proj.project(*x)).collect();
+                if closed {
+                    if let Some(f) = p.first().copied() {
+                        p.push(f);
+                    }
+                }
+                p
+            })
+            .collect();
+        all.push(Layer {
+            style,
+            paths,
+            filled: false,
+        });
+    }
+    let marks: Vec<[f64; 2]> = marks.iter().map(|m| proj.project(*m)).collect();
+    svg_document(title, &all, &marks)
+}
