@@ -350,16 +350,7 @@ fn face_roots(face: Vec<Bernstein<Interval>>, opts: &SystemOptions) -> Option<Ve
             if let KrawczykVerdict::Unique(k) = verdict {
                 let unique: Vec<[f64; 2]> = lo.iter().zip(&hi).map(|(a, b)| [*a, *b]).collect();
                 let enc = refine_local(&polys, k, &lo, &hi, opts.refine_width);
-                // Found already by a grown test of a neighbouring sub-box?
-                let seen = out
-                    .iter()
-                    .any(|r| within(&enc, &r.unique_in) || within(&r.enclosure, &unique));
-                if !seen {
-                    out.push(FaceRoot {
-                        enclosure: enc,
-                        unique_in: unique,
-                    });
-                }
+                record(&mut out, enc, unique);
                 continue;
             }
             // A zero near the sub-box's sides: the test on the grown box (not on the whole
@@ -391,15 +382,7 @@ fn face_roots(face: Vec<Bernstein<Interval>>, opts: &SystemOptions) -> Option<Ve
                     if enc.iter().any(|e| e[1] < 0.0 || e[0] > 1.0) {
                         continue;
                     }
-                    let seen = out
-                        .iter()
-                        .any(|r| within(&enc, &r.unique_in) || within(&r.enclosure, &unique));
-                    if !seen {
-                        out.push(FaceRoot {
-                            enclosure: enc,
-                            unique_in: unique,
-                        });
-                    }
+                    record(&mut out, enc, unique);
                     continue;
                 }
             }
@@ -426,6 +409,20 @@ fn face_roots(face: Vec<Bernstein<Interval>>, opts: &SystemOptions) -> Option<Ve
         }
     }
     Some(out)
+}
+
+/// Adds a zero of a face system to those found, unless it is one of them (found already by a
+/// grown test of a neighbouring sub-box: one's enclosure lies in the other's uniqueness region).
+fn record(out: &mut Vec<FaceRoot>, enclosure: Vec<[f64; 2]>, unique_in: Vec<[f64; 2]>) {
+    let seen = out
+        .iter()
+        .any(|r| within(&enclosure, &r.unique_in) || within(&r.enclosure, &unique_in));
+    if !seen {
+        out.push(FaceRoot {
+            enclosure,
+            unique_in,
+        });
+    }
 }
 
 /// Whether Newton's method (f64, from the centre of the polynomials' unit box) ends within
