@@ -519,7 +519,7 @@ where
                 CurveFormat::Svg => events_svg(
                     &ev,
                     &format!(
-                        "{name}: {} event curves on the viewing sphere (parabolic blue, flecnodal green, bitangent orange; dashed: source not certified)",
+                        "{name}: {} event curves on the viewing sphere (parabolic blue, flecnodal green, bitangent orange; dashed: not certified)",
                         ev.curves.len()
                     ),
                 ),

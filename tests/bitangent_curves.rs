@@ -161,6 +161,8 @@ fn two_spheres_bitangents_are_the_tangent_cones() {
     let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
     // Soundness: every pair is a common tangent plane's, and on one sphere there is none.
     let mut segments: [Vec<([f64; 3], [f64; 3])>; 2] = [Vec::new(), Vec::new()];
+    let mut lines: [Vec<[f64; 3]>; 2] = [Vec::new(), Vec::new()];
+    let mut line_errors = [0.0f64; 2];
     for pair in &out.pairs {
         let across = pair.patches[0] < 8 && pair.patches[1] >= 8;
         if !across {
@@ -204,6 +206,17 @@ fn two_spheres_bitangents_are_the_tangent_cones() {
                 };
                 segments[k].push((w[0].p, w[1].p));
             }
+            // The lines on the viewing sphere are enclosed: a bound exists, and the drawn
+            // lines are within it of the cone's (each line meets the axis at a fixed angle).
+            let err = br.line_error.expect("the lines are enclosed");
+            let k = usize::from((dot(br.points[0].p, e) - (r1 - r2) / d).abs() >= 1e-6);
+            let c = [(r1 - r2) / d, (r1 + r2) / d][k];
+            for pt in &br.points {
+                let off = (dot(pt.line, e).abs().min(1.0).acos() - c.asin()).abs();
+                assert!(off <= err, "{off} > {err}");
+                lines[k].push(pt.line);
+            }
+            line_errors[k] = line_errors[k].max(err);
         }
     }
     // Completeness: both circles of contact on the first sphere are covered by the drawn
@@ -243,6 +256,19 @@ fn two_spheres_bitangents_are_the_tangent_cones() {
                 .map(|&sg| dist(p, sg))
                 .fold(f64::INFINITY, f64::min);
             assert!(near <= tol, "circle {k} at {a}: {near}");
+            // On the viewing sphere: the true line of this pair (in the plane of e and n,
+            // perpendicular to n) is within the proven error of a drawn line.
+            let t: [f64; 3] = std::array::from_fn(|j| e[j] - c * n[j]);
+            let near_line = lines[k]
+                .iter()
+                .map(|l| (dot(*l, t).abs() / dot(t, t).sqrt()).min(1.0).acos())
+                .fold(f64::INFINITY, f64::min);
+            assert!(
+                near_line <= line_errors[k],
+                "circle {k} at {a}: line {near_line} > {}",
+                line_errors[k]
+            );
         }
     }
+    eprintln!("line error bounds on the sphere: {line_errors:?}");
 }

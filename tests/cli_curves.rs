@@ -406,6 +406,28 @@ fn events_json_svg_and_bad_kinds() {
             assert!(((v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt() - 1.0).abs() < 1e-9);
         }
     }
+    // With a tolerance the pieces are small enough for every curve's error on the sphere to be
+    // bounded: certified.
+    let (code, out, err) = limn(&[
+        "events",
+        TEAPOT,
+        "--kinds",
+        "parabolic",
+        "--format",
+        "json",
+        "--tol",
+        "1e-4",
+    ]);
+    assert_eq!(code, Some(0), "{err}");
+    let r: Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(r["certified"], true);
+    let largest = r["largest_error"].as_f64().unwrap();
+    assert!(largest > 0.0 && largest < 0.5, "{largest}");
+    for c in r["curves"].as_array().unwrap() {
+        assert_eq!(c["certified"], true);
+        assert!(c["error"].as_f64().unwrap() <= largest);
+    }
+    assert_eq!(r["families"][0]["unbounded"], 0);
     let (code, out, _) = limn(&["events", TEAPOT, "--kinds", "parabolic", "--format", "svg"]);
     assert_eq!(code, Some(0));
     assert!(out.starts_with("<svg") || out.starts_with("<?xml"));

@@ -24,6 +24,11 @@ fn torus_parabolic_events_are_the_equator() {
     };
     let ev = events(&model, &opts);
     assert!(ev.sources_certified());
+    // Every curve's distance to the true one on the sphere is bounded.
+    assert!(ev.certified(), "{:?}", ev.largest_error());
+    let error = ev.largest_error().expect("bounded");
+    println!("torus parabolic events: error bound {error:.3e} rad");
+    assert!(error < 0.1, "{error}");
     let curves: Vec<_> = ev
         .curves
         .iter()
@@ -39,7 +44,8 @@ fn torus_parabolic_events_are_the_equator() {
             longitudes.push(d[1].atan2(d[0]));
         }
     }
-    // Every longitude within 0.2 rad of a drawn direction (the circle covered, up to sign).
+    // Completeness within the bound: every horizontal direction (the true curve) is within the
+    // error of a drawn direction.
     for i in 0..64 {
         let a = -std::f64::consts::PI + i as f64 * std::f64::consts::PI / 32.0;
         let near = longitudes
@@ -49,7 +55,7 @@ fn torus_parabolic_events_are_the_equator() {
                 d.min(std::f64::consts::PI - d)
             })
             .fold(f64::INFINITY, f64::min);
-        assert!(near < 0.2, "longitude {a}: {near}");
+        assert!(near <= error, "longitude {a}: {near} > {error}");
     }
 }
 
@@ -65,6 +71,9 @@ fn double_well_bitangent_events_are_one_direction() {
     };
     let ev = events(&model, &opts);
     assert!(ev.sources_certified());
+    assert!(ev.certified());
+    let error = ev.curves[0].error.expect("bounded");
+    println!("double well bitangent events: error bound {error:.3e} rad");
     let x0 = (33.0f64 / 32.0).sqrt();
     let l = (4.0 * x0 * x0 + x0 * x0 / 4.0).sqrt();
     let want = [2.0 * x0 / l, -x0 / 2.0 / l, 0.0];

@@ -73,6 +73,7 @@ fn with_a_tolerance_the_drawn_segments_are_within_it() {
     // The true curve in space: (x, 2 − x, f(x, 2 − x)), x ∈ [0, 2].
     let f = |x: f64, y: f64| x * y + (x * x * x + y * y * y) / 6.0;
     let curve = |x: f64| [x, 2.0 - x, f(x, 2.0 - x)];
+    let mut last_err = f64::INFINITY;
     for tol in [1e-2, 1e-4] {
         let r = patch_flecnodal(
             &cubic_graph(),
@@ -117,6 +118,29 @@ fn with_a_tolerance_the_drawn_segments_are_within_it() {
             r.boxes
         );
         assert!(worst <= tol + 1e-9);
+        // On the viewing sphere: every true line (1, −1, f_x − f_y) at x ∈ [0, 2] is within
+        // the proven bound of a drawn line (here f_x − f_y = 0 along the curve: its image is
+        // one point), and the bound shrinks with the tolerance.
+        let err = r.branches[0].line_error.expect("the lines are enclosed");
+        let mut far: f64 = 0.0;
+        for i in 0..=400 {
+            let x = 2.0 * i as f64 / 400.0;
+            let y = 2.0 - x;
+            let t = [1.0, -1.0, (y + x * x / 2.0) - (x + y * y / 2.0)];
+            let tl = (t[0] * t[0] + t[1] * t[1] + t[2] * t[2]).sqrt();
+            let near = pts
+                .iter()
+                .map(|p| {
+                    let c: f64 = (0..3).map(|k| p.line[k] * t[k] / tl).sum();
+                    c.abs().min(1.0).acos()
+                })
+                .fold(f64::INFINITY, f64::min);
+            far = far.max(near);
+        }
+        eprintln!("tol {tol}: lines within {far:.2e} of the drawn ones, bound {err:.2e}");
+        assert!(far <= err, "{far} > {err}");
+        assert!(err < last_err, "{err} >= {last_err}");
+        last_err = err;
     }
 }
 

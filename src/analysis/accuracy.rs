@@ -114,6 +114,18 @@ pub(crate) fn restrict_enclosing(
     Some(q)
 }
 
+/// The hull of a polynomial's Bernstein coefficients restricted to the box `[lo, hi]`: an
+/// enclosure of its range there (`proofs/coefficient-range.md`).
+pub(crate) fn range_enclosing(
+    p: &Bernstein<Interval>,
+    lo: [f64; 2],
+    hi: [f64; 2],
+) -> Option<Interval> {
+    let q = restrict_enclosing(p, lo, hi)?;
+    let c = q.coeffs();
+    Some(c[1..].iter().fold(c[0], |a, b| a.hull(b)))
+}
+
 impl SurfaceBounds {
     /// Converts (once) the patch's exact polynomials.
     pub(crate) fn new(patch: &RationalPatch) -> SurfaceBounds {
@@ -273,13 +285,7 @@ impl PatchAccuracy {
     /// would need many vertices is halved first (its halves get tighter bounds), the others
     /// get uniformly spaced certified vertices, each checked against the bound with its own
     /// certified error and slope.
-    pub fn trace(
-        &self,
-        arc: &Arc,
-        from: [[f64; 2]; 2],
-        to: [[f64; 2]; 2],
-        tol: f64,
-    ) -> (Vec<[f64; 2]>, Option<f64>) {
+    pub fn trace(&self, arc: &Arc, from: [[f64; 2]; 2], to: [[f64; 2]; 2], tol: f64) -> Traced {
         let center = |b: [[f64; 2]; 2]| [0.5 * (b[0][0] + b[1][0]), 0.5 * (b[0][1] + b[1][1])];
         let half = |b: [[f64; 2]; 2], k: usize| 0.5 * (b[1][k] - b[0][k]);
         let (p0, p1) = (center(from), center(to));
@@ -310,7 +316,11 @@ impl PatchAccuracy {
         } else {
             self.phi_bounds(blo, bhi, m).map(|b| b.0)
         };
-        let fail = |p0: [f64; 2], p1: [f64; 2]| (vec![p0, p1], None);
+        let fail = |p0: [f64; 2], p1: [f64; 2]| Traced {
+            points: vec![p0, p1],
+            bound: None,
+            pieces: Vec::new(),
+        };
         let (Some(phi1), Some(l_m)) = (phi1, self.surface.bounds(blo, bhi, m).map(|b| b[0])) else {
             return fail(p0, p1);
         };
@@ -336,13 +346,53 @@ impl PatchAccuracy {
             tol,
             verts: vec![(p0[o], p0[m], end_delta(from))],
             worst,
+            pieces: Vec::new(),
         };
         let last = (p1[o], p1[m], end_delta(to));
         let ok = tracer.cover(tracer.verts[0], last, phi1, None, 0);
         tracer.verts.push(last);
-        let pts = tracer.verts.iter().map(|v| uv(m, v.1, v.0)).collect();
-        (pts, ok.then_some(tracer.worst))
+        let n = tracer.verts.len();
+        // The end pieces: from the end vertex's level to the true end, anywhere in its
+        // location box, the arc stays within the vertex's `end_delta` in m.
+        let end = |b: [[f64; 2]; 2], v: Vertex| {
+            let mut lo = [0.0; 2];
+            let mut hi = [0.0; 2];
+            lo[o] = b[0][o];
+            hi[o] = b[1][o];
+            let r = v.2 * (1.0 + 1e-9);
+            lo[m] = Interval::point(v.1)
+                .sub(&Interval::point(r))
+                .lo()
+                .max(blo[m]);
+            hi[m] = Interval::point(v.1)
+                .add(&Interval::point(r))
+                .hi()
+                .min(bhi[m]);
+            [lo, hi]
+        };
+        let mut pieces = vec![(end(from, tracer.verts[0]), 0, 0)];
+        pieces.extend(tracer.pieces.iter().map(|&(b, i)| (b, i, i + 1)));
+        pieces.push((end(to, last), n - 1, n - 1));
+        Traced {
+            points: tracer.verts.iter().map(|v| uv(m, v.1, v.0)).collect(),
+            bound: ok.then_some(tracer.worst),
+            pieces: if ok { pieces } else { Vec::new() },
+        }
     }
+}
+
+/// An arc traced to a tolerance ([`PatchAccuracy::trace`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Traced {
+    /// Its vertices in (u, v), from its `from` end to its `to` end.
+    pub points: Vec<[f64; 2]>,
+    /// The largest chord bound `E`; `None` if the tolerance was not met within the budget or
+    /// a bound could not be computed.
+    pub bound: Option<f64>,
+    /// With a bound: boxes `[lo, hi]` in (u, v) that cover the arc, each with the range
+    /// `first..=last` of the vertices it also holds: one per chord (its two vertices) and one
+    /// per end (the piece beyond the end vertex's level, up to the true end).
+    pub pieces: Vec<([[f64; 2]; 2], usize, usize)>,
 }
 
 /// A vertex: (o level, m value, δ = certified error of the m value at that level).
@@ -367,6 +417,9 @@ struct Tracer<'a> {
     tol: f64,
     verts: Vec<Vertex>,
     worst: f64,
+    /// Per chord whose bound was accepted: a box holding it and its piece of the arc, and
+    /// the index of its first vertex (the second is the next).
+    pieces: Vec<([[f64; 2]; 2], usize)>,
 }
 
 impl Tracer<'_> {
@@ -416,14 +469,8 @@ impl Tracer<'_> {
         phi1: f64,
         parent_sb: Option<[f64; 4]>,
     ) -> Option<(f64, f64, [f64; 4])> {
-        let (m, o) = (self.m, 1 - self.m);
-        let h = (b.0 - a.0).abs();
-        let reach = a.2.max(b.2) + phi1 * h;
-        let (mut lo, mut hi) = (self.blo, self.bhi);
-        lo[o] = a.0.min(b.0).max(self.blo[o]);
-        hi[o] = a.0.max(b.0).min(self.bhi[o]);
-        lo[m] = (a.1.min(b.1) - reach).max(self.blo[m]);
-        hi[m] = (a.1.max(b.1) + reach).min(self.bhi[m]);
+        let m = self.m;
+        let [lo, hi] = self.piece_box(a, b, phi1);
         let (p1, p2) = if self.on_edge {
             (0.0, 0.0)
         } else {
@@ -436,6 +483,27 @@ impl Tracer<'_> {
             None => self.acc.surface.bounds(lo, hi, m)?,
         };
         Some((p1.min(phi1), p2, sb))
+    }
+
+    /// A box of the arc's box that holds the arc piece between vertices a and b and both
+    /// vertices: between their levels in o, and within `δ + Φ₁·h` of both in m (`phi1`
+    /// bounds |φ'| on a box containing the piece), with a relative margin for rounding.
+    fn piece_box(&self, a: Vertex, b: Vertex, phi1: f64) -> [[f64; 2]; 2] {
+        let (m, o) = (self.m, 1 - self.m);
+        let h = (b.0 - a.0).abs();
+        let reach = (a.2.max(b.2) + phi1 * h) * (1.0 + 1e-9);
+        let (mut lo, mut hi) = (self.blo, self.bhi);
+        lo[o] = a.0.min(b.0).max(self.blo[o]);
+        hi[o] = a.0.max(b.0).min(self.bhi[o]);
+        lo[m] = Interval::point(a.1.min(b.1))
+            .sub(&Interval::point(reach))
+            .lo()
+            .max(self.blo[m]);
+        hi[m] = Interval::point(a.1.max(b.1))
+            .add(&Interval::point(reach))
+            .hi()
+            .min(self.bhi[m]);
+        [lo, hi]
     }
 
     /// Adds the vertices strictly between a and b (a is already in `verts`); false if the
@@ -498,6 +566,8 @@ impl Tracer<'_> {
             let e = self.chord_bound(prev, next, phi2, sb);
             if e.is_finite() && e <= self.tol {
                 self.worst = self.worst.max(e);
+                let first = self.verts.len() - 1;
+                self.pieces.push((self.piece_box(prev, next, phi1), first));
             } else if depth < MAX_SPLIT_DEPTH && (next.0 - prev.0).abs() > 0.0 {
                 // The planned spacing did not suffice (a vertex less precise than expected):
                 // cover this chord on its own, with bounds on its smaller box.

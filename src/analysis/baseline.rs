@@ -197,6 +197,7 @@ pub fn baseline_silhouette(
                 error_bound: None,
                 points: line.iter().map(|p| draw.eval(p[0], p[1])).collect(),
                 points_uv: line.iter().map(|p| (pi, p[0], p[1])).collect(),
+                pieces: Vec::new(),
             });
         }
     }

@@ -17,7 +17,7 @@
 //! pair around it holds no genuine pair, and [`mirror_dropped`] keeps one of the two orders of
 //! every pair.
 
-use super::accuracy::{div, restrict_enclosing};
+use super::accuracy::{div, range_enclosing, restrict_enclosing};
 use super::patch_curve::deflate_common;
 use super::projection::lift;
 use crate::bernstein::Bernstein;
@@ -150,7 +150,7 @@ impl DiagonalTest {
         let r: Vec<Interval> = self
             .normal
             .iter()
-            .map(|p| restrict_enclosing(p, lo, hi).map(|q| hull(&q)))
+            .map(|p| range_enclosing(p, lo, hi))
             .collect::<Option<_>>()?;
         Some([r[0], r[1], r[2]])
     }
@@ -179,7 +179,7 @@ impl DiagonalTest {
         for (k, dk) in self.normal_d.iter().enumerate() {
             let d: Vec<Interval> = dk
                 .iter()
-                .map(|p| restrict_enclosing(p, lo, hi).map(|q| hull(&q)))
+                .map(|p| range_enclosing(p, lo, hi))
                 .collect::<Option<_>>()?;
             let d = [d[0], d[1], d[2]];
             let da = along(&d, &frame[0]);
@@ -196,7 +196,7 @@ impl DiagonalTest {
     /// coordinate of their cross product has a strict sign): then every normal functional that
     /// vanishes on both is a multiple of the normal there.
     pub fn tangents_independent(&self, lo: [f64; 2], hi: [f64; 2]) -> bool {
-        let r = |p: &IPoly| restrict_enclosing(p, lo, hi).map(|q| hull(&q));
+        let r = |p: &IPoly| range_enclosing(p, lo, hi);
         let t: Option<Vec<Interval>> = self.tangents.iter().flatten().map(r).collect();
         let Some(t) = t else { return false };
         let (a, b) = (&t[0..3], &t[3..6]);

@@ -16,9 +16,10 @@ use super::bitangent::{
     bitangent_system, deflated_normal, mirror_dropped, normals_apart, seam_excludes, shared_sides,
     DiagonalTest,
 };
+use super::line_cone::{largest, piece_error};
 use super::patch_curve::{Accuracy, Evaluator};
 use crate::model::Model;
-use crate::number::{Interval, Rational};
+use crate::number::{Interval, Number, Rational};
 use crate::solver::chain::chain;
 use crate::solver::curve2::TIME_LIMIT_REASON;
 use crate::solver::curve_n::{
@@ -108,6 +109,11 @@ pub struct BitangentBranch {
     pub closed: bool,
     /// Its ends lie on the patches' sides (or it is closed): nothing is missing at its ends.
     pub complete: bool,
+    /// A proven bound, in radians, on the distance between the polyline of its `line`s on the
+    /// viewing sphere and the true lines along the branch, both ways
+    /// ([`super::line_cone::piece_error`] per arc); `None` where an arc's lines could not be
+    /// enclosed within 45°.
+    pub line_error: Option<f64>,
 }
 
 /// A region of `(u, v, s, t)` whose part of the curve was not decided.
@@ -491,12 +497,23 @@ fn branches(
             normal: unit_or_zero(cross(pu, pv)),
         }
     };
+    // The lines of an arc's pairs: q − p over its tube (the two points' boxes are independent,
+    // so the difference of the surfaces' enclosures encloses it).
+    let arc_error = |arc: usize, ends: [[f64; 3]; 2]| {
+        let tube = curve.arc_tube(&curve.arcs[arc]);
+        let (lo1, hi1) = params(same, &tube, 0);
+        let (lo2, hi2) = params(same, &tube, 2);
+        let p = sides[0].jets.image(lo1, hi1)?;
+        let q = sides[1].jets.image(lo2, hi2)?;
+        piece_error(&std::array::from_fn(|k| q[k].sub(&p[k])), &ends)
+    };
     chain(&edges, curve.crossings.len(), &boundary)
         .into_iter()
         .map(|c| {
             // Across a mirror join the next crossings are the other order of the same pairs.
             let mut flipped = false;
             let mut points = Vec::with_capacity(c.vertices.len());
+            let mut errors = Vec::with_capacity(c.edges.len());
             for (k, &v) in c.vertices.iter().enumerate() {
                 if k > 0 {
                     let u = c.vertices[k - 1];
@@ -507,11 +524,20 @@ fn branches(
                 }
                 points.push(point(v, flipped));
             }
+            // Each solver arc joins two drawn points whose lines are those of its crossings (a
+            // mirror join draws nothing: its ends are one pair in two orders).
+            for (k, &e) in c.edges.iter().enumerate() {
+                if e < curve.arcs.len() {
+                    let ends = [c.vertices[k], c.vertices[(k + 1) % c.vertices.len()]];
+                    errors.push(arc_error(e, ends.map(|v| point(v, false).line)));
+                }
+            }
             BitangentBranch {
                 patches,
                 points,
                 closed: c.closed,
                 complete: c.complete,
+                line_error: largest(errors),
             }
         })
         .collect()

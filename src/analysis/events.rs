@@ -10,16 +10,21 @@
 //! Each event curve on the sphere is the image of a curve on the surface under a continuous map
 //! (away from flat points), so it is connected, closed when its source is, and a source whose
 //! topology is certified gives a sphere curve whose pieces are certified to be images of whole
-//! curves. The drawn directions are f64 evaluations at the source's proven points: they are not
-//! enclosed, and no distance bound on the sphere is claimed. A view direction and its opposite
+//! curves. The source's proven enclosures (the boxes that cover it piece by piece) are mapped
+//! to cones of lines ([`super::line_cone`]), which bound the distance on the sphere between the
+//! drawn polyline and the true curve: each curve's `error`. A view direction and its opposite
 //! see the same events, so both antipodes are drawn (`proofs/events.md`).
 
 use super::bitangent_curves::{bitangent_curves, BitangentOptions};
 use super::flecnodal_curves::{flecnodal_curves, FlecnodalOptions};
+use super::line_cone::{largest, piece_error};
 use super::model_curves::Silhouette;
+use super::parabolic::AsymptoticRanges;
 use super::patch_curve::Evaluator;
 use super::render::{svg_document, Layer};
 use crate::model::Model;
+use crate::number::Interval;
+use rayon::prelude::*;
 
 /// The family of an event curve.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
@@ -44,6 +49,12 @@ pub struct SphereCurve {
     pub closed: bool,
     /// The source curve's topology is certified (complete, nothing missing at its ends).
     pub certified_source: bool,
+    /// A proven bound, in radians, on the distance on the sphere (between lines: antipodes
+    /// are one point) from every point of the drawn polyline to the true curve and back;
+    /// `None` where the source's enclosures were too wide to bound it (or had none).
+    pub error: Option<f64>,
+    /// The source is certified and the error is bounded.
+    pub certified: bool,
     /// Unit view directions in order along the curve (one antipode, signs continuous along
     /// it; the other antipode is their negation). Points where the direction is undefined (a
     /// flat point) are left out.
@@ -64,6 +75,37 @@ impl Events {
     /// Every source curve certified and nothing unresolved.
     pub fn sources_certified(&self) -> bool {
         self.uncertified.iter().all(|&(_, c, u)| c == 0 && u == 0)
+    }
+
+    /// Every source certified, nothing unresolved, and every curve's error bounded.
+    pub fn certified(&self) -> bool {
+        self.sources_certified() && self.curves.iter().all(|c| c.certified)
+    }
+
+    /// The largest error bound of the curves (0 without curves); `None` if a curve has none.
+    pub fn largest_error(&self) -> Option<f64> {
+        largest(self.curves.iter().map(|c| c.error))
+    }
+}
+
+impl SphereCurve {
+    fn new(
+        kind: EventKind,
+        patches: Vec<usize>,
+        closed: bool,
+        certified_source: bool,
+        directions: Vec<[f64; 3]>,
+        error: Option<f64>,
+    ) -> SphereCurve {
+        SphereCurve {
+            kind,
+            patches,
+            closed,
+            certified_source,
+            error,
+            certified: certified_source && error.is_some(),
+            directions: continuous(directions),
+        }
     }
 }
 
@@ -112,27 +154,68 @@ pub(crate) fn parabolic_direction(eval: &Evaluator, u: f64, v: f64) -> Option<[f
 }
 
 /// The parabolic event curves of a model from its parabolic curves (as computed by
-/// [`super::parabolic::parabolic`]).
+/// [`super::parabolic::parabolic`]). Each curve's error bound comes from its pieces
+/// ([`super::model_curves::SilhouetteCurve::pieces`]): over each piece's box, one of the
+/// asymptotic rows ([`super::parabolic::AsymptoticRanges`]) must be enclosed in a cone.
 pub fn parabolic_events(model: &Model, parabolic: &Silhouette) -> Vec<SphereCurve> {
     let evals: Vec<Evaluator> = model
         .patches
         .iter()
         .map(|p| Evaluator::new(&p.surface))
         .collect();
-    parabolic
+    let mut used: Vec<usize> = parabolic
         .curves
         .iter()
-        .map(|c| SphereCurve {
-            kind: EventKind::Parabolic,
-            patches: c.patches.clone(),
-            closed: c.closed,
-            certified_source: c.certified_topology,
-            directions: continuous(
-                c.points_uv
-                    .iter()
-                    .filter_map(|&(p, u, v)| parabolic_direction(&evals[p], u, v))
-                    .collect(),
-            ),
+        .flat_map(|c| c.pieces.iter().map(|p| p.patch))
+        .collect();
+    used.sort_unstable();
+    used.dedup();
+    let ranges: Vec<Option<AsymptoticRanges>> = (0..model.patches.len())
+        .into_par_iter()
+        .map(|p| {
+            used.binary_search(&p)
+                .is_ok()
+                .then(|| AsymptoticRanges::new(&model.patches[p].surface))
+        })
+        .collect();
+    parabolic
+        .curves
+        .par_iter()
+        .map(|c| {
+            let dirs: Vec<Option<[f64; 3]>> = c
+                .points_uv
+                .iter()
+                .map(|&(p, u, v)| parabolic_direction(&evals[p], u, v))
+                .collect();
+            // A point left out (a flat point) joins its neighbours by a segment that no piece
+            // holds: then no bound.
+            let error = if dirs.iter().all(Option::is_some) && !c.pieces.is_empty() {
+                largest(c.pieces.iter().map(|piece| {
+                    let drawn: Vec<[f64; 3]> = dirs[piece.first..=piece.last]
+                        .iter()
+                        .flatten()
+                        .copied()
+                        .collect();
+                    let fails = |d: &[Interval; 3]| piece_error(d, &drawn).is_none();
+                    let rows =
+                        ranges[piece.patch]
+                            .as_ref()?
+                            .lines(piece.cell[0], piece.cell[1], &fails);
+                    rows.iter()
+                        .filter_map(|d| piece_error(d, &drawn))
+                        .min_by(f64::total_cmp)
+                }))
+            } else {
+                None
+            };
+            SphereCurve::new(
+                EventKind::Parabolic,
+                c.patches.clone(),
+                c.closed,
+                c.certified_topology,
+                dirs.into_iter().flatten().collect(),
+                error,
+            )
         })
         .collect()
 }
@@ -173,13 +256,14 @@ pub fn events(model: &Model, opts: &EventOptions) -> Events {
         let mut incomplete = 0;
         for b in r.patches.iter().flat_map(|p| &p.branches) {
             incomplete += usize::from(!b.complete);
-            out.curves.push(SphereCurve {
-                kind: EventKind::Flecnodal,
-                patches: vec![b.patch],
-                closed: b.closed,
-                certified_source: b.complete,
-                directions: continuous(b.points.iter().map(|p| p.line).collect()),
-            });
+            out.curves.push(SphereCurve::new(
+                EventKind::Flecnodal,
+                vec![b.patch],
+                b.closed,
+                b.complete,
+                b.points.iter().map(|p| p.line).collect(),
+                b.line_error,
+            ));
         }
         out.uncertified.push((
             EventKind::Flecnodal,
@@ -195,13 +279,17 @@ pub fn events(model: &Model, opts: &EventOptions) -> Events {
         let mut incomplete = 0;
         for c in r.pairs.iter().flat_map(|p| &p.branches) {
             incomplete += usize::from(!c.complete);
-            out.curves.push(SphereCurve {
-                kind: EventKind::Bitangent,
-                patches: c.patches.to_vec(),
-                closed: c.closed,
-                certified_source: c.complete,
-                directions: continuous(c.points.iter().filter_map(|p| unit(p.line)).collect()),
-            });
+            let dirs: Vec<[f64; 3]> = c.points.iter().filter_map(|p| unit(p.line)).collect();
+            // A pair left out (p = q) would join its neighbours by an unbounded segment.
+            let error = c.line_error.filter(|_| dirs.len() == c.points.len());
+            out.curves.push(SphereCurve::new(
+                EventKind::Bitangent,
+                c.patches.to_vec(),
+                c.closed,
+                c.complete,
+                dirs,
+                error,
+            ));
         }
         out.uncertified.push((
             EventKind::Bitangent,
@@ -219,7 +307,7 @@ fn equal_area(d: [f64; 3]) -> [f64; 2] {
 
 /// The viewing sphere as an SVG map (Lambert's cylindrical equal-area projection: longitude
 /// across, `z` up), each event curve drawn with its antipode, parabolic events blue,
-/// flecnodal green, bitangent orange; curves whose source is not certified dashed.
+/// flecnodal green, bitangent orange; curves not certified (source or error bound) dashed.
 pub fn events_svg(ev: &Events, title: &str) -> String {
     let style = |k: EventKind, certified: bool| match (k, certified) {
         (EventKind::Parabolic, true) => r##"stroke="#04c" stroke-width="1.4""##,
@@ -255,7 +343,7 @@ pub fn events_svg(ev: &Events, title: &str) -> String {
             for c in ev
                 .curves
                 .iter()
-                .filter(|c| c.kind == kind && c.certified_source == certified)
+                .filter(|c| c.kind == kind && c.certified == certified)
             {
                 for sign in [1.0, -1.0] {
                     let mut pts: Vec<[f64; 3]> =
@@ -300,6 +388,8 @@ pub struct FamilySummary {
     pub uncertified_curves: usize,
     /// Unresolved boxes (and degenerate patches) of the source computation.
     pub unresolved: usize,
+    /// Curves whose error on the sphere could not be bounded.
+    pub unbounded: usize,
 }
 
 /// The document of `limn events`.
@@ -307,9 +397,12 @@ pub struct FamilySummary {
 pub struct EventsReport {
     /// The model file.
     pub model: String,
-    /// Every source curve's topology certified and nothing unresolved (the drawn directions are
-    /// still f64 evaluations: no distance bound on the sphere).
+    /// Every source curve's topology certified and nothing unresolved.
     pub sources_certified: bool,
+    /// Sources certified and every curve's error on the sphere bounded.
+    pub certified: bool,
+    /// The largest error bound on the sphere, radians (`null` if a curve has none).
+    pub largest_error: Option<f64>,
     /// Per family.
     pub families: Vec<FamilySummary>,
     /// The curves.
@@ -326,6 +419,8 @@ impl EventsReport {
         EventsReport {
             model: model.to_string(),
             sources_certified: ev.sources_certified(),
+            certified: ev.certified(),
+            largest_error: ev.largest_error(),
             families: ev
                 .uncertified
                 .iter()
@@ -334,6 +429,11 @@ impl EventsReport {
                     curves: ev.curves.iter().filter(|x| x.kind == kind).count(),
                     uncertified_curves: c,
                     unresolved: u,
+                    unbounded: ev
+                        .curves
+                        .iter()
+                        .filter(|x| x.kind == kind && x.error.is_none())
+                        .count(),
                 })
                 .collect(),
             curves: ev.curves.clone(),
@@ -345,19 +445,30 @@ impl EventsReport {
     /// A short human-readable summary.
     pub fn text(&self) -> String {
         let mut out = format!(
-            "{}: {} event curves on the viewing sphere (each with its antipode), sources {}\n",
+            "{}: {} event curves on the viewing sphere (each with its antipode): {}, sources {}, \
+             largest error {}\n",
             self.model,
             self.curves.len(),
+            if self.certified {
+                "certified"
+            } else {
+                "NOT certified"
+            },
             if self.sources_certified {
                 "certified"
             } else {
                 "NOT all certified"
+            },
+            match self.largest_error {
+                Some(e) => format!("{e:.3e} rad"),
+                None => "not bounded".to_string(),
             }
         );
         for f in &self.families {
             out += &format!(
-                "  {:?}: {} curves, {} with uncertified source, {} unresolved boxes in the source\n",
-                f.kind, f.curves, f.uncertified_curves, f.unresolved
+                "  {:?}: {} curves, {} with uncertified source, {} unresolved boxes in the source, \
+                 {} without an error bound\n",
+                f.kind, f.curves, f.uncertified_curves, f.unresolved, f.unbounded
             );
         }
         out += &format!("{:.1} ms on {} threads\n", self.ms, self.threads);

@@ -10,12 +10,13 @@
 //! reported as degenerate, not solved.
 
 use super::flecnodal::{flecnodal_system, Chart};
+use super::line_cone::{largest, piece_error};
 use super::parabolic::parabolic_function;
-use super::patch_curve::{Accuracy, Evaluator, SIDES};
+use super::patch_curve::{Accuracy, Evaluator, TangentRanges, SIDES};
 use super::projection::lift;
 use crate::bernstein::Bernstein;
 use crate::model::Model;
-use crate::number::Rational;
+use crate::number::{Interval, Number, Rational};
 use crate::solver::chain::chain;
 use crate::solver::curve2::TIME_LIMIT_REASON;
 use crate::solver::curve_n::{
@@ -91,6 +92,11 @@ pub struct FlecnodalBranch {
     pub closed: bool,
     /// Its ends lie on the patch's sides (or it is closed): nothing is missing at its ends.
     pub complete: bool,
+    /// A proven bound, in radians, on the distance between the polyline of its `line`s on the
+    /// viewing sphere and the true lines along the branch, both ways
+    /// ([`super::line_cone::piece_error`] per arc); `None` where an arc's lines could not be
+    /// enclosed within 45°.
+    pub line_error: Option<f64>,
 }
 
 /// A region of `(u, v, s)` whose part of the curve was not decided.
@@ -344,19 +350,49 @@ pub fn patch_flecnodal(
         out.error_bound = bound;
         out.within_tolerance = bound.is_some_and(|b| b <= t);
     }
+    let tangents = TangentRanges::new(patch);
+    let curves = [&cu, &cv];
     out.branches = join_charts(&cu, &cv)
         .into_iter()
-        .map(|(vertices, closed, complete)| FlecnodalBranch {
-            patch: index,
-            points: vertices
+        .map(|(vertices, arcs, closed, complete)| {
+            let points: Vec<FlecnodalPoint> = vertices
                 .into_iter()
                 .map(|(k, c)| flecnodal_point(&eval, charts[k], c))
-                .collect(),
-            closed,
-            complete,
+                .collect();
+            let line_error = largest(arcs.iter().enumerate().map(|(i, &(k, a))| {
+                let ends = [&points[i], &points[(i + 1) % points.len()]];
+                let tube = curves[k].arc_tube(&curves[k].arcs[a]);
+                arc_lines(&tangents, charts[k], &tube)
+                    .and_then(|d| piece_error(&d, &ends.map(|p| p.line)))
+            }));
+            FlecnodalBranch {
+                patch: index,
+                points,
+                closed,
+                complete,
+                line_error,
+            }
         })
         .collect();
     out
+}
+
+/// An enclosure of the lines `a S_u + b S_v` over a box of the solver (in its warped
+/// coordinates), with `(a, b) = (1, σ)` or `(σ, 1)` by chart and `σ = 2s − 1`.
+fn arc_lines(tangents: &TangentRanges, chart: Chart, tube: &[[f64; 2]]) -> Option<[Interval; 3]> {
+    let cell: Vec<[f64; 2]> = (0..3)
+        .map(|k| unwarp_interval(tube[k], warp_f64(k)))
+        .collect();
+    let two = Interval::point(2.0);
+    let one = Interval::point(1.0);
+    let sigma = Interval::try_new(cell[2][0], cell[2][1])?
+        .mul(&two)
+        .sub(&one);
+    let (a, b) = match chart {
+        Chart::AlongU => (one, sigma),
+        Chart::AlongV => (sigma, one),
+    };
+    tangents.combination([cell[0][0], cell[1][0]], [cell[0][1], cell[1][1]], a, b)
 }
 
 /// Chains the arcs of both charts into branches, joining the charts at the directions they
@@ -364,7 +400,14 @@ pub fn patch_flecnodal(
 /// direction up to sign (`Ψ` is even and `Φ` odd in `d`, so the two systems on those planes
 /// have the same zeros, and a crossing of one in the other's uniqueness region is the same
 /// point: `proofs/space-curves.md` §4).
-type Joined<'a> = Vec<(Vec<(usize, &'a SpaceCrossing)>, bool, bool)>;
+/// Per branch: its vertices (chart, crossing), its arcs in order (chart, arc index), closed,
+/// complete.
+type Joined<'a> = Vec<(
+    Vec<(usize, &'a SpaceCrossing)>,
+    Vec<(usize, usize)>,
+    bool,
+    bool,
+)>;
 
 fn join_charts<'a>(cu: &'a SpaceCurve, cv: &'a SpaceCurve) -> Joined<'a> {
     let offset = cu.crossings.len();
@@ -405,7 +448,18 @@ fn join_charts<'a>(cu: &'a SpaceCurve, cv: &'a SpaceCurve) -> Joined<'a> {
         .into_iter()
         .map(|c| {
             let vertices = c.vertices.into_iter().map(|v| all[v]).collect();
-            (vertices, c.closed, c.complete)
+            let arcs = c
+                .edges
+                .into_iter()
+                .map(|e| {
+                    if e < cu.arcs.len() {
+                        (0, e)
+                    } else {
+                        (1, e - cu.arcs.len())
+                    }
+                })
+                .collect();
+            (vertices, arcs, c.closed, c.complete)
         })
         .collect()
 }

@@ -12,6 +12,7 @@ pub mod flecnodal_curves;
 pub mod flecnodal_report;
 pub mod fold_edges;
 pub mod hlr;
+pub mod line_cone;
 pub mod model_curves;
 pub mod parabolic;
 pub mod patch_curve;

@@ -5,7 +5,7 @@
 //! with certified accuracy (`proofs/chord-accuracy.md`). [`model_curves`] is the one entry
 //! point; each family says what differs in its [`CurveRules`].
 
-use super::accuracy::PatchAccuracy;
+use super::accuracy::{PatchAccuracy, Traced};
 use crate::bernstein::Bernstein;
 use crate::model::{Model, PatchAdjacency, SideUse, WeldTolerance};
 use crate::number::{Precision, Rational};
@@ -59,6 +59,26 @@ pub struct SilhouetteCurve {
     pub points_uv: Vec<(usize, f64, f64)>,
     /// The same points in space (f64 evaluation of the patch at those parameters).
     pub points: Vec<[f64; 3]>,
+    /// Boxes of parameters that cover the curve, each with the drawn points it holds: a proven
+    /// enclosure of the curve along its polyline, for bounds on functions along it (as the
+    /// directions of [`super::events`]). Empty for curves not found by the certified solver.
+    #[serde(skip)]
+    pub pieces: Vec<CurvePiece>,
+}
+
+/// A box of one patch's parameters that holds a piece of a curve and the drawn points
+/// `first..=last` of it ([`SilhouetteCurve::pieces`]). The pieces of a curve cover it, and
+/// every drawn segment lies in one of them.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CurvePiece {
+    /// The patch.
+    pub patch: usize,
+    /// `[lo, hi]` in (u, v).
+    pub cell: [[f64; 2]; 2],
+    /// The first drawn point it holds (an index into `points_uv`).
+    pub first: usize,
+    /// The last.
+    pub last: usize,
 }
 
 /// What the curve solver was given and proved for one patch.
@@ -1057,7 +1077,7 @@ fn chain_model(
 ) -> (Vec<SilhouetteCurve>, Vec<SingularPoint>) {
     let draw: Vec<DrawPatch> = patches.iter().map(|p| DrawPatch::new(p)).collect();
     // The certified traces of all arcs, in parallel (each arc is independent).
-    type Trace = Option<(Vec<[f64; 2]>, Option<f64>)>;
+    type Trace = Option<Traced>;
     let traced: Option<Vec<Vec<Trace>>> = accuracy.map(|(acc, tol)| {
         tops.par_iter()
             .enumerate()
@@ -1159,6 +1179,7 @@ fn chain_model(
         };
         let mut visited = Vec::new();
         let mut points_uv = Vec::new();
+        let mut pieces = Vec::new();
         let mut worst: Option<f64> = accuracy.map(|_| 0.0);
         for &(arc, backwards) in &walked {
             let (p, k) = arc_ref[arc];
@@ -1166,25 +1187,50 @@ fn chain_model(
                 visited.push(p);
             }
             let a = &tops[p].arcs[k];
-            let mut pts = match traced.as_ref().map(|t| &t[p][k]) {
-                Some(Some((pts, bound))) => {
-                    match bound {
-                        Some(e) => worst = worst.map(|w: f64| w.max(*e)),
+            // Without a trace, the arc's box holds the arc and all its drawing points.
+            let [lo, hi] = a.cell.to_f64();
+            let whole = |n: usize| vec![([lo, hi], 0, n - 1)];
+            let (mut pts, mut local) = match traced.as_ref().map(|t| &t[p][k]) {
+                Some(Some(t)) => {
+                    match t.bound {
+                        Some(e) => worst = worst.map(|w: f64| w.max(e)),
                         None => worst = None,
                     }
-                    pts.clone()
+                    let local = if t.pieces.is_empty() {
+                        whole(t.points.len())
+                    } else {
+                        t.pieces.clone()
+                    };
+                    (t.points.clone(), local)
                 }
                 Some(None) => {
                     worst = None;
-                    densify(&gs_fast[p], &tops[p], a, DENSIFY_STEPS)
+                    let pts = densify(&gs_fast[p], &tops[p], a, DENSIFY_STEPS);
+                    let n = pts.len();
+                    (pts, whole(n))
                 }
-                None => densify(&gs_fast[p], &tops[p], a, DENSIFY_STEPS),
+                None => {
+                    let pts = densify(&gs_fast[p], &tops[p], a, DENSIFY_STEPS);
+                    let n = pts.len();
+                    (pts, whole(n))
+                }
             };
             if backwards {
                 pts.reverse();
+                let n = pts.len();
+                for piece in &mut local {
+                    *piece = (piece.0, n - 1 - piece.2, n - 1 - piece.1);
+                }
             }
             // Each arc starts where the previous one ended: keep that point once.
             let skip = usize::from(!points_uv.is_empty());
+            let start = points_uv.len() - skip;
+            pieces.extend(local.into_iter().map(|(cell, i, j)| CurvePiece {
+                patch: p,
+                cell,
+                first: start + i,
+                last: start + j,
+            }));
             points_uv.extend(pts.into_iter().skip(skip).map(|[u, v]| (p, u, v)));
         }
         let points = points_uv
@@ -1199,6 +1245,7 @@ fn chain_model(
             error_bound: worst,
             points_uv,
             points,
+            pieces,
         });
     }
     // Junctions: nodes where three or more proven arcs meet.

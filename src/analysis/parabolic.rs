@@ -9,10 +9,12 @@
 //! `k = L'N' − M'² = W⁸ (LN − M²)` for `L = S_uu · (S_u × S_v)` etc., so k has the sign of the
 //! Gaussian curvature wherever the patch is regular (`proofs/parabolic.md`).
 
+use super::accuracy::range_enclosing;
 use super::model_curves::{model_curves, CurveRules, Silhouette};
+use super::patch_curve::TangentRanges;
 use crate::bernstein::Bernstein;
 use crate::model::{Model, WeldTolerance};
-use crate::number::Rational;
+use crate::number::{Interval, Number, Precision, Rational};
 use crate::solver::CurveOptions;
 use crate::surface::normal::cross;
 use crate::surface::RationalPatch;
@@ -50,6 +52,13 @@ fn integral<const K: usize>(ps: [Poly; K]) -> [Poly; K] {
 /// assert!(k.eval(&[Rational::from((1, 2)), Rational::from((1, 3))]) > 0);
 /// ```
 pub fn parabolic_function(patch: &RationalPatch) -> Poly {
+    let [l, m, nn] = second_fundamental_form(patch);
+    (&(&l * &nn) - &(&m * &m)).reduce_degree_exact()
+}
+
+/// The second fundamental form `(L', M', N')` of the module documentation: one common nonzero
+/// factor (`±W⁴` times a positive constant) times `(L, M, N)` taken with `S_u × S_v`.
+pub fn second_fundamental_form(patch: &RationalPatch) -> [Poly; 3] {
     // Homogeneous coordinates scaled by the lcm of their denominators: integers, so that the
     // products below stay cheap (k only gains a positive constant factor).
     let [px, py, pz, w] = integral(patch.homogeneous());
@@ -79,7 +88,63 @@ pub fn parabolic_function(patch: &RationalPatch) -> Poly {
         m = &m - &(&wuv * &det);
         nn = &nn - &(&wvv * &det);
     }
-    (&(&l * &nn) - &(&m * &m)).reduce_degree_exact()
+    [l, m, nn]
+}
+
+/// Interval polynomials for enclosures of the asymptotic lines at parabolic points over boxes
+/// (`proofs/events.md`, "Enclosures"): `a T_u + b T_v` with `(a, b) = (−M', L')` and with
+/// `(a, b) = (N', −M')`, each a multiple of an asymptotic direction wherever the form has
+/// rank 1 and that pair is not zero. The ranges of `L', M', N'` over the box are taken first,
+/// then combined with the tangents' coefficients ([`TangentRanges::combination`]).
+pub(crate) struct AsymptoticRanges {
+    form: [Bernstein<Interval>; 3],
+    tangents: TangentRanges,
+}
+
+impl AsymptoticRanges {
+    pub(crate) fn new(patch: &RationalPatch) -> AsymptoticRanges {
+        AsymptoticRanges {
+            form: second_fundamental_form(patch).map(|p| p.convert(Precision::F64)),
+            tangents: TangentRanges::new(patch),
+        }
+    }
+
+    /// Enclosures over the box `[lo, hi]` of the two rows' directions (either may hold
+    /// zero), the second only when `first_fails` says the first is of no use.
+    pub(crate) fn lines(
+        &self,
+        lo: [f64; 2],
+        hi: [f64; 2],
+        first_fails: &dyn Fn(&[Interval; 3]) -> bool,
+    ) -> Vec<[Interval; 3]> {
+        let r: Option<Vec<Interval>> = self
+            .form
+            .iter()
+            .map(|p| range_enclosing(p, lo, hi))
+            .collect();
+        let Some(r) = r else {
+            return Vec::new();
+        };
+        let (l, m, n) = (r[0], r[1], r[2]);
+        // The row of the larger of |L'|, |N'| first (as for a single point: it is zero only
+        // where the form is), the other only if that one fails.
+        let mid = |x: Interval| (0.5 * (x.lo() + x.hi())).abs();
+        let mut rows = [(m.neg(), l), (n, m.neg())];
+        if mid(n) > mid(l) {
+            rows.swap(0, 1);
+        }
+        let mut out = Vec::new();
+        for (a, b) in rows {
+            if let Some(d) = self.tangents.combination(lo, hi, a, b) {
+                let done = !first_fails(&d);
+                out.push(d);
+                if done {
+                    break;
+                }
+            }
+        }
+        out
+    }
 }
 
 /// The parabolic curves of a model, certified as silhouettes are (topology, and accuracy with

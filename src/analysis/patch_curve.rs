@@ -3,10 +3,9 @@
 //! tangents at the solver's points, and the accuracy targets that make the drawn polyline lie
 //! within a tolerance of the curve in space (`proofs/space-curves.md` §5).
 
-use super::accuracy::SurfaceBounds;
+use super::accuracy::{restrict_enclosing, SurfaceBounds};
 use crate::bernstein::Bernstein;
-use crate::number::Precision;
-use crate::number::Rational;
+use crate::number::{Interval, Number, Precision, Rational};
 use crate::solver::curve_n::{SpaceArc, SpaceCurve};
 use crate::surface::RationalPatch;
 
@@ -147,6 +146,59 @@ impl Accuracy {
             / 8.0;
         // A relative margin for the rounding of this sum.
         Some(e * (1.0 + 1e-9))
+    }
+}
+
+/// Interval tangents of a patch, for enclosures of the directions `a S_u + b S_v` over boxes.
+pub(crate) struct TangentRanges {
+    /// `T_u`, `T_v`: the same positive multiple (`W²`) of `S_u`, `S_v`.
+    t: [[Bernstein<Interval>; 3]; 2],
+}
+
+impl TangentRanges {
+    pub(crate) fn new(patch: &RationalPatch) -> TangentRanges {
+        let (tu, tv) = patch.tangents();
+        // One common degree for all six (degree elevation is exact), so that the restricted
+        // coefficients pair up by index.
+        let mut d = vec![0usize; 2];
+        for p in tu.iter().chain(&tv) {
+            for (a, &k) in d.iter_mut().zip(p.degrees()) {
+                *a = (*a).max(k);
+            }
+        }
+        let f = |p: &Bernstein<Rational>| p.elevate_to(&d).convert::<Interval>(Precision::F64);
+        TangentRanges {
+            t: [tu.each_ref().map(f), tv.each_ref().map(f)],
+        }
+    }
+
+    /// An enclosure of `a T_u + b T_v` (a positive multiple of `a S_u + b S_v`) over the box
+    /// `[lo, hi]` of the square, for all `a ∈ a`, `b ∈ b`: both tangents restricted to the box
+    /// have coefficients of the same indices, so those of the combination are
+    /// `a c_u + b c_v`, and their hull encloses its range.
+    pub(crate) fn combination(
+        &self,
+        lo: [f64; 2],
+        hi: [f64; 2],
+        a: Interval,
+        b: Interval,
+    ) -> Option<[Interval; 3]> {
+        let mut out = [Interval::point(0.0); 3];
+        for (k, o) in out.iter_mut().enumerate() {
+            let cu = restrict_enclosing(&self.t[0][k], lo, hi)?;
+            let cv = restrict_enclosing(&self.t[1][k], lo, hi)?;
+            if cu.degrees() != cv.degrees() {
+                return None;
+            }
+            let c: Vec<Interval> = cu
+                .coeffs()
+                .iter()
+                .zip(cv.coeffs())
+                .map(|(x, y)| a.mul(x).add(&b.mul(y)))
+                .collect();
+            *o = c[1..].iter().fold(c[0], |p, q| p.hull(q));
+        }
+        Some(out)
     }
 }
 

@@ -166,14 +166,13 @@ pub fn svg_document(title: &str, layers: &[Layer], marks: &[[f64; 2]]) -> String
     if !x0.is_finite() {
         (x0, y0, x1, y1) = (0.0, 0.0, 1.0, 1.0);
     }
+    // The longer side of the drawing spans 760 units; the canvas fits the drawing, with
+    // margins of 20 and a band of 30 at the top for the title.
     let size = 800.0;
     let scale = (size - 40.0) / (x1 - x0).max(y1 - y0).max(1e-300);
-    let map = |p: [f64; 2]| {
-        (
-            20.0 + (p[0] - x0) * scale,
-            size - 20.0 - (p[1] - y0) * scale,
-        )
-    };
+    let width = (40.0 + (x1 - x0) * scale).ceil();
+    let height = (50.0 + (y1 - y0) * scale).ceil();
+    let map = |p: [f64; 2]| (20.0 + (p[0] - x0) * scale, 30.0 + (y1 - p[1]) * scale);
     let path = |pts: &[[f64; 2]]| -> String {
         let mut d = String::new();
         for (i, p) in pts.iter().enumerate() {
@@ -185,7 +184,7 @@ pub fn svg_document(title: &str, layers: &[Layer], marks: &[[f64; 2]]) -> String
     let mut svg = String::new();
     let _ = writeln!(
         svg,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{size}" height="{size}" viewBox="0 0 {size} {size}">"#
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}">"#
     );
     let _ = writeln!(
         svg,

@@ -6,6 +6,9 @@
 pub(crate) struct Chain {
     /// The vertices in order (a closed chain does not repeat its first vertex).
     pub vertices: Vec<usize>,
+    /// The edges walked, in order: edge `i` joins vertices `i` and `i + 1` (for a closed
+    /// chain, the last joins the last vertex to the first).
+    pub edges: Vec<usize>,
     /// The last vertex joins the first.
     pub closed: bool,
     /// Closed with every vertex of degree 2, or open with both ends of degree 1 on the
@@ -32,10 +35,11 @@ pub(crate) fn chain(
         if used[first] {
             continue;
         }
-        let (vertices, last) = walk(edges, &incident, &mut used, end, first);
+        let (vertices, walked, last) = walk(edges, &incident, &mut used, end, first);
         let complete = boundary(end) && boundary(last) && incident[last].len() == 1;
         chains.push(Chain {
             vertices,
+            edges: walked,
             closed: false,
             complete,
         });
@@ -45,11 +49,12 @@ pub(crate) fn chain(
             continue;
         }
         let start = edges[i].0;
-        let (vertices, last) = walk(edges, &incident, &mut used, start, i);
+        let (vertices, walked, last) = walk(edges, &incident, &mut used, start, i);
         let closed = last == start;
         let complete = closed && vertices.iter().all(|&v| incident[v].len() == 2);
         chains.push(Chain {
             vertices,
+            edges: walked,
             closed,
             complete,
         });
@@ -63,27 +68,29 @@ fn walk(
     used: &mut [bool],
     start: usize,
     first: usize,
-) -> (Vec<usize>, usize) {
+) -> (Vec<usize>, Vec<usize>, usize) {
     let mut vertices = vec![start];
+    let mut walked = Vec::new();
     let mut at = start;
     let mut edge = first;
     loop {
         used[edge] = true;
+        walked.push(edge);
         let (a, b) = edges[edge];
         let next = if a == at { b } else { a };
         if next == start {
-            return (vertices, next);
+            return (vertices, walked, next);
         }
         vertices.push(next);
         at = next;
         // Continue only through a vertex of degree exactly 2 (anything else ends the walk).
         let inc = &incident[at];
         if inc.len() != 2 {
-            return (vertices, at);
+            return (vertices, walked, at);
         }
         match inc.iter().find(|&&j| !used[j]) {
             Some(&j) => edge = j,
-            None => return (vertices, at),
+            None => return (vertices, walked, at),
         }
     }
 }
@@ -103,6 +110,9 @@ mod tests {
             (c[0].vertices.clone(), c[0].closed, c[0].complete),
             (vec![0, 1, 2], false, true)
         );
+        assert_eq!(c[0].edges, vec![0, 1]);
+        assert_eq!(c[1].edges, vec![5]);
+        assert_eq!(c[2].edges, vec![2, 3, 4]);
         assert_eq!((c[1].vertices.clone(), c[1].complete), (vec![6, 7], false));
         assert_eq!(
             (c[2].vertices.clone(), c[2].closed, c[2].complete),

@@ -168,6 +168,33 @@ impl SpaceCurve {
     pub fn is_certified(&self) -> bool {
         self.unresolved.is_empty() && self.branches.iter().all(|b| b.complete)
     }
+
+    /// A box, `[lo, hi]` per variable, that holds the arc and the drawn segment between its
+    /// crossings' centres: the arc's box, narrowed (with a tolerance) to the hull of the two
+    /// centres grown by the arc's deviation (`proofs/space-curves.md` §5: every point of the
+    /// arc is within `deviation_k` in coordinate `k` of a point of the segment).
+    pub fn arc_tube(&self, arc: &SpaceArc) -> Vec<[f64; 2]> {
+        let (a, b) = (
+            self.crossings[arc.from].point(),
+            self.crossings[arc.to].point(),
+        );
+        (0..arc.cell.len())
+            .map(|k| {
+                let [lo, hi] = arc.cell[k];
+                match &arc.deviation {
+                    Some(dev) => {
+                        let (l, h) = (a[k].min(b[k]), a[k].max(b[k]));
+                        let grown = [
+                            Interval::point(l).sub(&Interval::point(dev[k])).lo(),
+                            Interval::point(h).add(&Interval::point(dev[k])).hi(),
+                        ];
+                        [grown[0].max(lo), grown[1].min(hi)]
+                    }
+                    None => [lo, hi],
+                }
+            })
+            .collect()
+    }
 }
 
 /// A crossing as one box found it.
