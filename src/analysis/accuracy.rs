@@ -191,8 +191,35 @@ impl PatchAccuracy {
     fn phi_bounds(&self, lo: [f64; 2], hi: [f64; 2], m: usize) -> Option<(f64, f64)> {
         let o = 1 - m;
         let r = |i: usize| PatchAccuracy::range(&self.g[i], lo, hi);
-        let (gm, go) = (r(d1(m)), r(d1(o)));
-        let (gmm, gmo, goo) = (r(d2(m, m)), r(d2(m, o)), r(d2(o, o)));
+        // The first partials restricted to the box once; the second partials from their
+        // restrictions' derivatives: for q(ξ) = h(lo + w ξ), dq/dξ = w ∂h/∂x, so the hull of
+        // the derivative's coefficients times 1/w encloses ∂h/∂x over the box (interval
+        // arithmetic on an exact identity). A side of zero width falls back to restricting the
+        // second partial itself.
+        let (Some(qm), Some(qo)) = (
+            restrict_enclosing(&self.g[d1(m)], lo, hi),
+            restrict_enclosing(&self.g[d1(o)], lo, hi),
+        ) else {
+            return None;
+        };
+        let hull = |q: &Bernstein<Interval>| {
+            let c = q.coeffs();
+            c[1..].iter().fold(c[0], |a, b| a.hull(b))
+        };
+        let inv_width = |k: usize| {
+            Interval::point(hi[k])
+                .sub(&Interval::point(lo[k]))
+                .recip()
+                .filter(|w| w.lo() > 0.0 && w.hi().is_finite())
+        };
+        let second = |q: &Bernstein<Interval>, axis: usize, direct: usize| match inv_width(axis) {
+            Some(iw) => hull(&q.deriv(axis)).mul(&iw),
+            None => r(direct),
+        };
+        let (gm, go) = (hull(&qm), hull(&qo));
+        let gmm = second(&qm, m, d2(m, m));
+        let gmo = second(&qm, o, d2(m, o));
+        let goo = second(&qo, o, d2(o, o));
         let p1 = div(go, gm)?.neg();
         let two = Interval::point(2.0);
         let num = goo.add(&two.mul(&gmo).mul(&p1)).add(&gmm.mul(&p1).mul(&p1));
