@@ -5,7 +5,7 @@
 
 use limn::bernstein::Bernstein;
 use limn::number::{Interval, Precision, Rational};
-use limn::solver::curve_n::{solve_space_curve, SpaceCurve, SpaceCurveOptions};
+use limn::solver::curve_n::{solve_space_curve, ArcAccept, SpaceCurve, SpaceCurveOptions};
 use limn::solver::system::{solve_system, SystemOptions};
 use limn::solver::{solve_curve, CurveOptions, Dyadic};
 
@@ -193,6 +193,40 @@ fn arcs_are_within_the_tolerance_of_their_chords() {
             c.boxes
         );
     }
+}
+
+/// A caller's acceptance test replaces the per-variable targets: here the sagitta of the chord
+/// on the circle (an a-posteriori bound from the arc's ends), which every arc must meet.
+#[test]
+fn a_callers_acceptance_drives_the_subdivision() {
+    let n = 3;
+    let r = 2.0 / 7.0;
+    let f1 = circle(n, 0, 1, q(1, 2), q(3, 7), q(2, 7));
+    let f2 = &var(n, 2) - &konst(n, q(1, 3));
+    let chord = |a: &[[f64; 2]], b: &[[f64; 2]]| {
+        let c = |e: &[[f64; 2]], k: usize| 0.5 * (e[k][0] + e[k][1]);
+        ((c(a, 0) - c(b, 0)).powi(2) + (c(a, 1) - c(b, 1)).powi(2)).sqrt()
+    };
+    let sagitta = move |h: f64| r - (r * r - h * h / 4.0).max(0.0).sqrt();
+    let mut arcs = Vec::new();
+    for tol in [1e-3, 1e-5] {
+        let opts = SpaceCurveOptions {
+            tolerance: Some(vec![f64::INFINITY; 3]),
+            accept: Some(ArcAccept(std::sync::Arc::new(move |a, b, _dev| {
+                sagitta(chord(a, b)) <= tol
+            }))),
+            ..SpaceCurveOptions::default()
+        };
+        let c = solve_space_curve(&[f1.clone(), f2.clone()], &opts);
+        assert!(c.is_certified() && c.within_tolerance);
+        for a in &c.arcs {
+            let (p, q) = (&c.crossings[a.from].enclosure, &c.crossings[a.to].enclosure);
+            assert!(sagitta(chord(p, q)) <= tol);
+        }
+        arcs.push(c.arcs.len());
+    }
+    // A hundred times tighter needs about ten times the arcs (the sagitta goes as h²).
+    assert!(arcs[1] > 5 * arcs[0], "{arcs:?}");
 }
 
 /// A polynomial in 3 variables of degree 2 in each, with coefficients from a seed.

@@ -22,6 +22,7 @@ use crate::model::Model;
 use crate::number::{Interval, Number, Rational};
 use crate::solver::chain::chain;
 use crate::solver::curve2::TIME_LIMIT_REASON;
+use crate::solver::curve_n::ArcAccept;
 use crate::solver::curve_n::{
     solve_space_curve_excluding, unwarp, unwarp_interval, warp, BoxVerdict, SpaceCurve,
     SpaceCurveOptions,
@@ -32,7 +33,7 @@ use rayon::prelude::*;
 /// What to compute.
 #[derive(Clone, Debug)]
 pub struct BitangentOptions {
-    /// Budgets of the curve solver (its `tolerance` and `max_chord` are set from
+    /// Budgets of the curve solver (its `tolerance` and `accept` are set from
     /// `tolerance`).
     pub solver: SpaceCurveOptions,
     /// The largest allowed distance in space between the drawn polylines and the true curves
@@ -343,16 +344,21 @@ pub fn pair_bitangents(
         .map(|k| Rational::from(WARP[if same { k % 2 } else { k }]))
         .collect();
     let eqs: Vec<_> = eqs.iter().map(|p| warp(p, &lambdas)).collect();
-    let accuracy: Option<[Accuracy; 2]> = options.tolerance.and_then(|t| {
+    let accuracy: Option<[Accuracy; 2]> = options.tolerance.and_then(|_| {
         Some([
-            Accuracy::new(first, t, [lambda(same, 0), lambda(same, 1)])?,
-            Accuracy::new(second, t, [lambda(same, 2), lambda(same, 3)])?,
+            Accuracy::new(first, [lambda(same, 0), lambda(same, 1)])?,
+            Accuracy::new(second, [lambda(same, 2), lambda(same, 3)])?,
         ])
     });
     let mut opts = options.solver.clone();
-    if let Some([a, b]) = &accuracy {
-        opts.tolerance = Some([a.solver_tolerance, b.solver_tolerance].concat());
-        opts.max_chord = Some([a.solver_chord, b.solver_chord].concat());
+    if let (Some([a, b]), Some(t)) = (&accuracy, options.tolerance) {
+        // An arc is accurate when its bound in space on both patches (the one reported)
+        // meets the tolerance.
+        opts.tolerance = Some(vec![f64::INFINITY; 4]);
+        let (a, b) = (a.clone(), b.clone());
+        opts.accept = Some(ArcAccept(std::sync::Arc::new(move |from, to, dev| {
+            a.error_of(from, to, dev, 0) <= t && b.error_of(from, to, dev, 2) <= t
+        })));
     }
     let coincidence_depth = options.coincidence_depth;
     let seams = if same {

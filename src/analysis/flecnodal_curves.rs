@@ -20,7 +20,7 @@ use crate::number::{Interval, Number, Rational};
 use crate::solver::chain::chain;
 use crate::solver::curve2::TIME_LIMIT_REASON;
 use crate::solver::curve_n::{
-    solve_space_curve_where, unwarp, unwarp_interval, warp, SpaceCrossing, SpaceCurve,
+    solve_space_curve_where, unwarp, unwarp_interval, warp, ArcAccept, SpaceCrossing, SpaceCurve,
     SpaceCurveOptions,
 };
 use crate::surface::RationalPatch;
@@ -31,7 +31,7 @@ type Poly = Bernstein<Rational>;
 /// What to compute.
 #[derive(Clone, Debug, Default)]
 pub struct FlecnodalOptions {
-    /// Budgets of the curve solver (its `tolerance` and `max_chord` are set from
+    /// Budgets of the curve solver (its `tolerance` and `accept` are set from
     /// `tolerance`).
     pub solver: SpaceCurveOptions,
     /// The largest allowed distance in space between the drawn polyline and the true curve,
@@ -310,15 +310,16 @@ pub fn patch_flecnodal(
     let eval = Evaluator::new(patch);
     let accuracy = options
         .tolerance
-        .and_then(|t| Accuracy::new(patch, t, [warp_f64(0), warp_f64(1)]));
+        .and_then(|_| Accuracy::new(patch, [warp_f64(0), warp_f64(1)]));
     let mut opts = options.solver.clone();
-    if let Some(a) = &accuracy {
-        opts.tolerance = Some(vec![
-            a.solver_tolerance[0],
-            a.solver_tolerance[1],
-            f64::INFINITY,
-        ]);
-        opts.max_chord = Some(vec![a.solver_chord[0], a.solver_chord[1], f64::INFINITY]);
+    if let (Some(a), Some(t)) = (&accuracy, options.tolerance) {
+        // Deviations computed for every variable; an arc is accurate when its bound in space
+        // (the one reported) meets the tolerance.
+        opts.tolerance = Some(vec![f64::INFINITY; 3]);
+        let a = a.clone();
+        opts.accept = Some(ArcAccept(std::sync::Arc::new(move |from, to, dev| {
+            a.error_of(from, to, dev, 0) <= t
+        })));
     }
     let opts = &opts;
     let (cu, cv) = rayon::join(

@@ -83,9 +83,10 @@ fn warp_bounds(l: f64) -> (f64, f64) {
     (first * (1.0 + 1e-12), second * (1.0 + 1e-12))
 }
 
-/// Bounds of a patch's derivatives over its square, and the solver's targets (for the two
-/// variables `(u, v)`, warped by the factors `lambda`) that make every drawn segment lie within
-/// the tolerance of the curve in space.
+/// Bounds of a patch's derivatives over its square (its variables `(u, v)` warped by the
+/// factors `lambda`), for the bound in space of every drawn segment, which the solver's
+/// acceptance of arcs compares with the tolerance.
+#[derive(Clone, Debug)]
 pub(crate) struct Accuracy {
     /// |S_u|, |S_v| over the patch.
     l: [f64; 2],
@@ -93,31 +94,17 @@ pub(crate) struct Accuracy {
     s2: [f64; 3],
     /// The warp factors of u and v.
     lambda: [f64; 2],
-    /// For u and v in the solver's (warped) coordinates.
-    pub(crate) solver_tolerance: [f64; 2],
-    pub(crate) solver_chord: [f64; 2],
 }
 
 impl Accuracy {
-    pub(crate) fn new(patch: &RationalPatch, tol: f64, lambda: [f64; 2]) -> Option<Accuracy> {
+    pub(crate) fn new(patch: &RationalPatch, lambda: [f64; 2]) -> Option<Accuracy> {
         let b = SurfaceBounds::new(patch);
         let [lu, suu, suv, svv] = b.bounds([0.0, 0.0], [1.0, 1.0], 0)?;
         let [lv, ..] = b.bounds([0.0, 0.0], [1.0, 1.0], 1)?;
-        let (du, ddu) = warp_bounds(lambda[0]);
-        let (dv, ddv) = warp_bounds(lambda[1]);
-        // Half the tolerance for the parameter deviation, half for the chords' bulge.
-        let dev = [
-            tol / (4.0 * du * lu.max(1e-300)),
-            tol / (4.0 * dv * lv.max(1e-300)),
-        ];
-        let bulge = ddu * lu + ddv * lv + suu + 2.0 * suv + svv;
-        let c = (4.0 * tol / bulge.max(1e-300)).sqrt();
         Some(Accuracy {
             l: [lu, lv],
             s2: [suu, suv, svv],
             lambda,
-            solver_tolerance: dev,
-            solver_chord: [c / du, c / dv],
         })
     }
 
@@ -127,10 +114,22 @@ impl Accuracy {
     /// `Δ = Λ h` (`proofs/space-curves.md` §5).
     pub(crate) fn error(&self, c: &SpaceCurve, arc: &SpaceArc, offset: usize) -> Option<f64> {
         let dev = arc.deviation.as_ref()?;
-        let (a, b) = (
+        Some(self.error_of(
             &c.crossings[arc.from].enclosure,
             &c.crossings[arc.to].enclosure,
-        );
+            dev,
+            offset,
+        ))
+    }
+
+    /// [`Accuracy::error`] from an arc's ends' enclosures and its deviation.
+    pub(crate) fn error_of(
+        &self,
+        a: &[[f64; 2]],
+        b: &[[f64; 2]],
+        dev: &[f64],
+        offset: usize,
+    ) -> f64 {
         let h = |k: usize| a[k][1].max(b[k][1]) - a[k][0].min(b[k][0]);
         let mut e = 0.0;
         let mut delta = [0.0; 2];
@@ -145,7 +144,7 @@ impl Accuracy {
             + self.s2[2] * delta[1] * delta[1])
             / 8.0;
         // A relative margin for the rounding of this sum.
-        Some(e * (1.0 + 1e-9))
+        e * (1.0 + 1e-9)
     }
 }
 

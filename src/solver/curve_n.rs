@@ -45,6 +45,25 @@ pub struct SpaceCurveOptions {
     pub max_chord: Option<Vec<f64>>,
     /// A wall-clock time after which no box is subdivided any more.
     pub deadline: Option<std::time::Instant>,
+    /// The caller's own test of an arc's accuracy, in place of the comparisons with
+    /// `tolerance` and `max_chord` (which must still be set, to have deviations computed).
+    pub accept: Option<ArcAccept>,
+}
+
+/// A test of an arc's accuracy from its two crossings' enclosures and its deviation per
+/// variable ([`SpaceArc::deviation`]): a box whose arcs all pass is not subdivided for
+/// accuracy. With it a caller subdivides until its own a-posteriori bound (the distance in
+/// space, say) meets its tolerance, rather than until a priori per-variable targets do.
+#[derive(Clone)]
+pub struct ArcAccept(pub std::sync::Arc<AcceptFn>);
+
+/// The function of an [`ArcAccept`]: `(from enclosure, to enclosure, deviation) -> accurate`.
+pub type AcceptFn = dyn Fn(&[[f64; 2]], &[[f64; 2]], &[f64]) -> bool + Send + Sync;
+
+impl std::fmt::Debug for ArcAccept {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("ArcAccept(..)")
+    }
 }
 
 impl Default for SpaceCurveOptions {
@@ -60,6 +79,7 @@ impl Default for SpaceCurveOptions {
             tolerance: None,
             max_chord: None,
             deadline: None,
+            accept: None,
         }
     }
 }
@@ -852,13 +872,17 @@ impl Solver<'_> {
                         Interval::point(bulge).add(&Interval::point(slack)).hi()
                     })
                     .collect();
-                accurate &= dev.iter().zip(tol).all(|(d, t)| d <= t);
-                if let Some(chord) = &self.opts.max_chord {
-                    let extent = |k: usize| {
-                        let (a, b) = (&pair[0].enclosure[k], &pair[1].enclosure[k]);
-                        a[1].max(b[1]) - a[0].min(b[0])
-                    };
-                    accurate &= chord.iter().enumerate().all(|(k, c)| extent(k) <= *c);
+                if let Some(accept) = &self.opts.accept {
+                    accurate &= (accept.0)(&pair[0].enclosure, &pair[1].enclosure, &dev);
+                } else {
+                    accurate &= dev.iter().zip(tol).all(|(d, t)| d <= t);
+                    if let Some(chord) = &self.opts.max_chord {
+                        let extent = |k: usize| {
+                            let (a, b) = (&pair[0].enclosure[k], &pair[1].enclosure[k]);
+                            a[1].max(b[1]) - a[0].min(b[0])
+                        };
+                        accurate &= chord.iter().enumerate().all(|(k, c)| extent(k) <= *c);
+                    }
                 }
                 Some(dev)
             })
