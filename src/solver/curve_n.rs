@@ -19,8 +19,8 @@
 use super::curve2::TIME_LIMIT_REASON;
 use super::dyadic::Dyadic;
 use super::system::{
-    inverse, krawczyk, krawczyk_verdict, newton, split_box, DyadicBoxN, KrawczykVerdict,
-    SystemOptions,
+    inverse, krawczyk, krawczyk_in_box, krawczyk_verdict, newton, split_box, DyadicBoxN,
+    KrawczykVerdict, SystemOptions,
 };
 use crate::bernstein::Bernstein;
 use crate::number::{Interval, Number, Precision, Rational};
@@ -364,13 +364,6 @@ fn map_into(local: &[[f64; 2]], a: &[f64], b: &[f64], inward: bool) -> Vec<[f64;
         .collect()
 }
 
-/// Sub-box `[lo, hi]` (local) of the box a Krawczyk image `k` (in the sub-box's own unit
-/// coordinates) lies in, rounded outward.
-fn sub_to_local(k: &[Interval], lo: &[f64], hi: &[f64]) -> Vec<[f64; 2]> {
-    let unit: Vec<[f64; 2]> = k.iter().map(|x| [x.lo(), x.hi()]).collect();
-    to_global(&unit, lo, hi)
-}
-
 /// The zeros of a square system given on a face (local unit coordinates, the box's own
 /// interval polynomials): each with an enclosure and a region where it is the only zero, both
 /// local; `None` if some part of the face was not decided within the budget. Krawczyk's test
@@ -520,6 +513,11 @@ fn refine_local(
         .max(1e-300);
     let mut r = (0.25 * width / scale).max(1e-14);
     let mut tries = 0;
+    // The partial derivatives once, for Krawczyk's test on each small box.
+    let derivs: Vec<Vec<Bernstein<Interval>>> = polys
+        .iter()
+        .map(|p| (0..m).map(|j| p.deriv(j)).collect())
+        .collect();
     while r < 0.25 && tries < 12 {
         tries += 1;
         // Inside the tested box (the polynomials' unit box), where the zero is unique.
@@ -527,15 +525,10 @@ fn refine_local(
         if !b.iter().all(|e| 0.0 <= e[0] && e[1] <= 1.0) {
             break;
         }
-        let a: Vec<Interval> = b.iter().map(|e| Interval::point(e[0])).collect();
-        let c: Vec<Interval> = b.iter().map(|e| Interval::point(e[1])).collect();
-        let sub: Vec<Bernstein<Interval>> = polys.iter().map(|p| p.restrict_box(&a, &c)).collect();
-        if let Some(kk) = krawczyk(&sub) {
-            let own = sub_to_local(
-                &kk,
-                &a.iter().map(|x| x.lo()).collect::<Vec<_>>(),
-                &c.iter().map(|x| x.lo()).collect::<Vec<_>>(),
-            );
+        let a: Vec<f64> = b.iter().map(|e| e[0]).collect();
+        let c: Vec<f64> = b.iter().map(|e| e[1]).collect();
+        if let Some(kk) = krawczyk_in_box(polys, &derivs, &a, &c) {
+            let own: Vec<[f64; 2]> = kk.iter().map(|x| [x.lo(), x.hi()]).collect();
             return to_global(&own, lo, hi);
         }
         r *= 8.0;

@@ -229,6 +229,54 @@ fn preconditioned(square: &[Bernstein<Interval>]) -> Option<(Matrix, Vec<Vec<Int
     Some((c, m))
 }
 
+/// Krawczyk's test on the box `[a, c]` of the polynomials' own coordinates, without restricting
+/// them to it: `f` at the box's centre `y` and the Jacobian over the box by evaluating the
+/// partial derivatives (`derivs[i][j] = ∂f_i/∂x_j`) at the box's intervals, which encloses
+/// their range there (`proofs/de-casteljau-enclosure.md`). `K = y − C f(y) + (I − C J)(B − y)`
+/// strictly inside the box proves exactly one zero in the box, and it lies in `K`
+/// (`proofs/krawczyk.md`; the box is any box, the unit box being one case). Cheaper than
+/// restricting degree-d polynomials to the box when the box is small.
+pub(crate) fn krawczyk_in_box(
+    polys: &[Bernstein<Interval>],
+    derivs: &[Vec<Bernstein<Interval>>],
+    a: &[f64],
+    c: &[f64],
+) -> Option<Vec<Interval>> {
+    let n = polys.len();
+    let b: Vec<Interval> = (0..n).map(|k| Interval::new(a[k], c[k])).collect();
+    let y: Vec<f64> = (0..n).map(|k| 0.5 * a[k] + 0.5 * c[k]).collect();
+    let yi: Vec<Interval> = y.iter().map(|&v| Interval::point(v)).collect();
+    let jac: Vec<Vec<Interval>> = derivs
+        .iter()
+        .map(|row| row.iter().map(|d| d.eval(&b)).collect())
+        .collect();
+    let mid: Vec<Vec<f64>> = jac
+        .iter()
+        .map(|r| r.iter().map(|x| 0.5 * (x.lo() + x.hi())).collect())
+        .collect();
+    let cm = inverse(&mid)?;
+    let fy: Vec<Interval> = polys.iter().map(|f| f.eval(&yi)).collect();
+    let dx: Vec<Interval> = (0..n).map(|k| b[k].sub(&yi[k])).collect();
+    let mut k = Vec::with_capacity(n);
+    for (i, ci) in cm.iter().enumerate() {
+        let mut acc = yi[i];
+        for (cij, fyj) in ci.iter().zip(&fy) {
+            acc = acc.sub(&Interval::point(*cij).mul(fyj));
+        }
+        for (j, dxj) in dx.iter().enumerate() {
+            let mut m = Interval::point(if i == j { 1.0 } else { 0.0 });
+            for (cil, jl) in ci.iter().zip(&jac) {
+                m = m.sub(&Interval::point(*cil).mul(&jl[j]));
+            }
+            acc = acc.add(&m.mul(dxj));
+        }
+        k.push(acc);
+    }
+    (0..n)
+        .all(|i| a[i] < k[i].lo() && k[i].hi() < c[i])
+        .then_some(k)
+}
+
 /// A cheap necessary condition for Krawczyk's test to succeed on the grown box, from the
 /// polynomials already on the box: every row of `|I − C J|` on the box sums to less than 1.
 /// It only decides whether to run the (costly) test; a box that fails it is subdivided, never
@@ -614,4 +662,35 @@ pub fn simplest_rational(lo: &Rational, hi: &Rational) -> Rational {
     let a = Rational::from(hi - &fl).recip();
     let b = Rational::from(lo - &fl).recip();
     fl + simplest_rational(&a, &b).recip()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::number::{Precision, Rational};
+
+    #[test]
+    fn krawczyk_in_a_small_box_proves_the_root_and_nothing_else() {
+        // f = x² + y² − 1/2, g = x − y: one root in the unit square, at (1/2, 1/2).
+        let q = |a: i64, b: i64| Rational::from((a, b));
+        let x = Bernstein::new(&[1, 0], vec![q(0, 1), q(1, 1)]).unwrap();
+        let y = Bernstein::new(&[0, 1], vec![q(0, 1), q(1, 1)]).unwrap();
+        let half = Bernstein::new(&[0, 0], vec![q(1, 2)]).unwrap();
+        let f = &(&(&x * &x) + &(&y * &y)) - &half;
+        let g = &x - &y;
+        let polys: Vec<Bernstein<Interval>> =
+            [f, g].iter().map(|p| p.convert(Precision::F64)).collect();
+        let derivs: Vec<Vec<Bernstein<Interval>>> = polys
+            .iter()
+            .map(|p| (0..2).map(|j| p.deriv(j)).collect())
+            .collect();
+        let k = krawczyk_in_box(&polys, &derivs, &[0.499, 0.4995], &[0.5008, 0.501]).unwrap();
+        assert!(
+            k.iter().all(|x| x.contains(0.5) && x.width() < 1e-4),
+            "{k:?}"
+        );
+        // A box without the root, and one too wide for the test, prove nothing.
+        assert!(krawczyk_in_box(&polys, &derivs, &[0.6, 0.6], &[0.7, 0.7]).is_none());
+        assert!(krawczyk_in_box(&polys, &derivs, &[0.0, 0.0], &[1.0, 1.0]).is_none());
+    }
 }
