@@ -658,9 +658,14 @@ impl Solver<'_> {
     /// Decides one box from its polynomials (local coordinates).
     fn settle(&mut self, cell: &DyadicBoxN, polys: &[Bernstein<Interval>]) -> Settled {
         let n = self.n;
-        let jac: Vec<Vec<Interval>> = polys
+        // The first partials, kept for the accuracy bounds.
+        let partials: Vec<Vec<Bernstein<Interval>>> = polys
             .iter()
-            .map(|f| (0..n).map(|k| range(&f.deriv(k))).collect())
+            .map(|f| (0..n).map(|k| f.deriv(k)).collect())
+            .collect();
+        let jac: Vec<Vec<Interval>> = partials
+            .iter()
+            .map(|row| row.iter().map(range).collect())
             .collect();
         let minor = |skip: usize| -> Vec<Vec<Interval>> {
             jac.iter()
@@ -767,7 +772,8 @@ impl Solver<'_> {
                 "two face crossings are not separated along the monotone variable",
             );
         }
-        let (deviations, accurate) = self.deviations(cell, polys, &jac, i, &c, beta, &crossings);
+        let (deviations, accurate) =
+            self.deviations(cell, &partials, &jac, i, &c, beta, &crossings);
         Settled::Arcs {
             monotone_in: i,
             crossings,
@@ -783,7 +789,7 @@ impl Solver<'_> {
     fn deviations(
         &self,
         cell: &DyadicBoxN,
-        polys: &[Bernstein<Interval>],
+        partials: &[Vec<Bernstein<Interval>>],
         jac: &[Vec<Interval>],
         i: usize,
         c: &[Vec<f64>],
@@ -807,15 +813,17 @@ impl Solver<'_> {
                 }
             })
             .collect();
-        // r_j = D²F_j(t, t) over the box.
-        let r: Vec<Interval> = polys
+        // r_j = D²F_j(t, t) over the box: the Hessian is symmetric, so each mixed partial is
+        // taken once and counted twice.
+        let r: Vec<Interval> = partials
             .iter()
-            .map(|f| {
+            .map(|row| {
                 let mut s = Interval::point(0.0);
                 for a in 0..n {
-                    let fa = f.deriv(a);
-                    for (b, tb) in t.iter().enumerate() {
-                        s = s.add(&range(&fa.deriv(b)).mul(&t[a]).mul(tb));
+                    for b in a..n {
+                        let h = range(&row[a].deriv(b));
+                        let term = h.mul(&t[a]).mul(&t[b]);
+                        s = s.add(&if a == b { term } else { term.add(&term) });
                     }
                 }
                 s
