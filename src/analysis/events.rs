@@ -57,7 +57,8 @@ pub struct SphereCurve {
     pub certified: bool,
     /// Unit view directions in order along the curve (one antipode, signs continuous along
     /// it; the other antipode is their negation). Points where the direction is undefined (a
-    /// flat point) are left out.
+    /// flat point) are left out. A closed curve closes from the last direction to whichever
+    /// of ± the first is within 90° of it.
     pub directions: Vec<[f64; 3]>,
 }
 
@@ -349,8 +350,12 @@ pub fn events_svg(ev: &Events, title: &str) -> String {
                     let mut pts: Vec<[f64; 3]> =
                         c.directions.iter().map(|d| d.map(|x| sign * x)).collect();
                     if c.closed {
-                        if let Some(f) = pts.first().copied() {
-                            pts.push(f);
+                        // Around a loop the line may come back with the opposite sign (a loop
+                        // of lines need not lift to a loop of vectors): close to whichever of
+                        // ± the first direction is within 90° of the last.
+                        if let (Some(f), Some(l)) = (pts.first().copied(), pts.last().copied()) {
+                            let same = f[0] * l[0] + f[1] * l[1] + f[2] * l[2] >= 0.0;
+                            pts.push(if same { f } else { f.map(|x| -x) });
                         }
                     }
                     // Split where the curve crosses the map's seam (longitude ±π).

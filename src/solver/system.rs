@@ -133,29 +133,41 @@ pub fn krawczyk(square: &[Bernstein<Interval>]) -> Option<Vec<Interval>> {
     k.iter().all(|x| x.lo() > 0.0 && x.hi() < 1.0).then_some(k)
 }
 
-/// The image `K = y − C f(y) + (I − C J)([0,1]^n − y)` of Krawczyk's operator.
+/// The image `K = y − C f(y) + (I − C J)([0,1]^n − y)` of Krawczyk's operator on the unit box,
+/// at its centre.
 fn krawczyk_image(
     square: &[Bernstein<Interval>],
     c: &Matrix,
     m: &[Vec<Interval>],
 ) -> Vec<Interval> {
     let n = square.len();
-    let half = Interval::point(0.5);
-    let y = vec![half; n];
+    let y = vec![Interval::point(0.5); n];
     let fy: Vec<Interval> = square.iter().map(|f| f.eval(&y)).collect();
-    let dx = Interval::new(-0.5, 0.5);
-    let mut k = Vec::with_capacity(n);
-    for (ci, mi) in c.iter().zip(m) {
-        let mut acc = half;
-        for (cij, fyj) in ci.iter().zip(&fy) {
-            acc = acc.sub(&Interval::point(*cij).mul(fyj));
-        }
-        for mij in mi {
-            acc = acc.add(&mij.mul(&dx));
-        }
-        k.push(acc);
-    }
-    k
+    krawczyk_operator(c, m, &y, &fy, &vec![Interval::new(-0.5, 0.5); n])
+}
+
+/// `K = y − C f(y) + M dx`, with `M = I − C J` and `dx ∋ x − y` for every x of the box.
+fn krawczyk_operator(
+    c: &Matrix,
+    m: &[Vec<Interval>],
+    y: &[Interval],
+    fy: &[Interval],
+    dx: &[Interval],
+) -> Vec<Interval> {
+    c.iter()
+        .zip(m)
+        .zip(y)
+        .map(|((ci, mi), yi)| {
+            let mut acc = *yi;
+            for (cij, fyj) in ci.iter().zip(fy) {
+                acc = acc.sub(&Interval::point(*cij).mul(fyj));
+            }
+            for (mij, dxj) in mi.iter().zip(dx) {
+                acc = acc.add(&mij.mul(dxj));
+            }
+            acc
+        })
+        .collect()
 }
 
 /// What Krawczyk's operator proves on the unit box of the polynomials' own coordinates
@@ -206,6 +218,13 @@ fn preconditioned(square: &[Bernstein<Interval>]) -> Option<(Matrix, Vec<Vec<Int
         .iter()
         .map(|f| (0..n).map(|j| range(&f.deriv(j))).collect())
         .collect();
+    precondition(&jac)
+}
+
+/// `C`, the inverse of the midpoint of an interval Jacobian `J`, and `I − C J`; `None` if the
+/// midpoint is singular.
+fn precondition(jac: &[Vec<Interval>]) -> Option<(Matrix, Vec<Vec<Interval>>)> {
+    let n = jac.len();
     let mid: Vec<Vec<f64>> = jac
         .iter()
         .map(|r| r.iter().map(|x| 0.5 * (x.lo() + x.hi())).collect())
@@ -218,7 +237,7 @@ fn preconditioned(square: &[Bernstein<Interval>]) -> Option<(Matrix, Vec<Vec<Int
             (0..n)
                 .map(|j| {
                     let mut m = Interval::point(if i == j { 1.0 } else { 0.0 });
-                    for (cil, jl) in ci.iter().zip(&jac) {
+                    for (cil, jl) in ci.iter().zip(jac) {
                         m = m.sub(&Interval::point(*cil).mul(&jl[j]));
                     }
                     m
@@ -244,34 +263,17 @@ pub(crate) fn krawczyk_in_box(
 ) -> Option<Vec<Interval>> {
     let n = polys.len();
     let b: Vec<Interval> = (0..n).map(|k| Interval::new(a[k], c[k])).collect();
-    let y: Vec<f64> = (0..n).map(|k| 0.5 * a[k] + 0.5 * c[k]).collect();
-    let yi: Vec<Interval> = y.iter().map(|&v| Interval::point(v)).collect();
+    let y: Vec<Interval> = (0..n)
+        .map(|k| Interval::point(0.5 * a[k] + 0.5 * c[k]))
+        .collect();
     let jac: Vec<Vec<Interval>> = derivs
         .iter()
         .map(|row| row.iter().map(|d| d.eval(&b)).collect())
         .collect();
-    let mid: Vec<Vec<f64>> = jac
-        .iter()
-        .map(|r| r.iter().map(|x| 0.5 * (x.lo() + x.hi())).collect())
-        .collect();
-    let cm = inverse(&mid)?;
-    let fy: Vec<Interval> = polys.iter().map(|f| f.eval(&yi)).collect();
-    let dx: Vec<Interval> = (0..n).map(|k| b[k].sub(&yi[k])).collect();
-    let mut k = Vec::with_capacity(n);
-    for (i, ci) in cm.iter().enumerate() {
-        let mut acc = yi[i];
-        for (cij, fyj) in ci.iter().zip(&fy) {
-            acc = acc.sub(&Interval::point(*cij).mul(fyj));
-        }
-        for (j, dxj) in dx.iter().enumerate() {
-            let mut m = Interval::point(if i == j { 1.0 } else { 0.0 });
-            for (cil, jl) in ci.iter().zip(&jac) {
-                m = m.sub(&Interval::point(*cil).mul(&jl[j]));
-            }
-            acc = acc.add(&m.mul(dxj));
-        }
-        k.push(acc);
-    }
+    let (cm, m) = precondition(&jac)?;
+    let fy: Vec<Interval> = polys.iter().map(|f| f.eval(&y)).collect();
+    let dx: Vec<Interval> = (0..n).map(|k| b[k].sub(&y[k])).collect();
+    let k = krawczyk_operator(&cm, &m, &y, &fy, &dx);
     (0..n)
         .all(|i| a[i] < k[i].lo() && k[i].hi() < c[i])
         .then_some(k)
