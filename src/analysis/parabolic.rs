@@ -98,13 +98,39 @@ pub fn second_fundamental_form(patch: &RationalPatch) -> [Poly; 3] {
 /// then combined with the tangents' coefficients ([`TangentRanges::combination`]).
 pub(crate) struct AsymptoticRanges {
     form: [Bernstein<Interval>; 3],
+    /// Their partial derivatives, for the mean value form.
+    form_d: [[Bernstein<Interval>; 2]; 3],
     tangents: TangentRanges,
+}
+
+/// An enclosure of `f` over the box `[lo, hi]` by the mean value form: `f(c)` at the centre
+/// plus the partials over the box (interval evaluation) times the box's half-widths
+/// (`proofs/events.md`, "Enclosures"). Cheaper than restricting `f` to a small box, and as
+/// tight to first order.
+fn mean_value_range(
+    f: &Bernstein<Interval>,
+    d: &[Bernstein<Interval>; 2],
+    lo: [f64; 2],
+    hi: [f64; 2],
+) -> Interval {
+    let c = [0.5 * lo[0] + 0.5 * hi[0], 0.5 * lo[1] + 0.5 * hi[1]];
+    let b = [Interval::new(lo[0], hi[0]), Interval::new(lo[1], hi[1])];
+    let ci = c.map(Interval::point);
+    let mut acc = f.eval(&ci);
+    for k in 0..2 {
+        acc = acc.add(&d[k].eval(&b).mul(&b[k].sub(&ci[k])));
+    }
+    acc
 }
 
 impl AsymptoticRanges {
     pub(crate) fn new(patch: &RationalPatch) -> AsymptoticRanges {
+        let form: [Bernstein<Interval>; 3] =
+            second_fundamental_form(patch).map(|p| p.convert(Precision::F64));
+        let form_d = form.each_ref().map(|p| [p.deriv(0), p.deriv(1)]);
         AsymptoticRanges {
-            form: second_fundamental_form(patch).map(|p| p.convert(Precision::F64)),
+            form,
+            form_d,
             tangents: TangentRanges::new(patch),
         }
     }
@@ -117,29 +143,45 @@ impl AsymptoticRanges {
         hi: [f64; 2],
         first_fails: &dyn Fn(&[Interval; 3]) -> bool,
     ) -> Vec<[Interval; 3]> {
-        let r: Option<Vec<Interval>> = self
-            .form
-            .iter()
-            .map(|p| range_enclosing(p, lo, hi))
-            .collect();
-        let Some(r) = r else {
+        if !(0..2).all(|k| 0.0 <= lo[k] && lo[k] <= hi[k] && hi[k] <= 1.0) {
             return Vec::new();
-        };
-        let (l, m, n) = (r[0], r[1], r[2]);
-        // The row of the larger of |L'|, |N'| first (as for a single point: it is zero only
-        // where the form is), the other only if that one fails.
-        let mid = |x: Interval| (0.5 * (x.lo() + x.hi())).abs();
-        let mut rows = [(m.neg(), l), (n, m.neg())];
-        if mid(n) > mid(l) {
-            rows.swap(0, 1);
         }
+        // The mean value form first (cheap, tight on small boxes); where neither row gives a
+        // cone with it, the restriction's hull as well (tighter on large boxes; both enclose
+        // the range, so their intersection does).
         let mut out = Vec::new();
-        for (a, b) in rows {
-            if let Some(d) = self.tangents.combination(lo, hi, a, b) {
-                let done = !first_fails(&d);
-                out.push(d);
-                if done {
-                    break;
+        for refined in [false, true] {
+            let r: Vec<Interval> = (0..3)
+                .map(|k| {
+                    let mv = mean_value_range(&self.form[k], &self.form_d[k], lo, hi);
+                    let hull = if refined {
+                        range_enclosing(&self.form[k], lo, hi)
+                    } else {
+                        None
+                    };
+                    match hull {
+                        Some(h) => {
+                            Interval::try_new(mv.lo().max(h.lo()), mv.hi().min(h.hi())).unwrap_or(h)
+                        }
+                        None => mv,
+                    }
+                })
+                .collect();
+            let (l, m, n) = (r[0], r[1], r[2]);
+            // The row of the larger of |L'|, |N'| first (as for a single point: it is zero
+            // only where the form is), the other only if that one fails.
+            let mid = |x: Interval| (0.5 * (x.lo() + x.hi())).abs();
+            let mut rows = [(m.neg(), l), (n, m.neg())];
+            if mid(n) > mid(l) {
+                rows.swap(0, 1);
+            }
+            for (a, b) in rows {
+                if let Some(d) = self.tangents.combination(lo, hi, a, b) {
+                    let done = !first_fails(&d);
+                    out.push(d);
+                    if done {
+                        return out;
+                    }
                 }
             }
         }
@@ -180,4 +222,30 @@ pub fn parabolic(
         whole_line: "parabolic line",
     };
     model_curves(model, ks, &rules, opts, weld, tol)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_mean_value_form_encloses_the_range_on_a_box() {
+        // L' of a torus patch over a small box and a large one: every sampled value is inside.
+        let patch = &crate::testing::shapes::torus(&Rational::from(3), &Rational::from(1))[0];
+        let f: Bernstein<Interval> = second_fundamental_form(patch)[0].convert(Precision::F64);
+        let d = [f.deriv(0), f.deriv(1)];
+        let exact = &second_fundamental_form(patch)[0];
+        for (lo, hi) in [([0.30, 0.60], [0.31, 0.62]), ([0.0, 0.0], [1.0, 1.0])] {
+            let r = mean_value_range(&f, &d, lo, hi);
+            for i in 0..=10 {
+                for j in 0..=10 {
+                    let x = lo[0] + (hi[0] - lo[0]) * i as f64 / 10.0;
+                    let y = lo[1] + (hi[1] - lo[1]) * j as f64 / 10.0;
+                    let at = [x, y].map(|v| Rational::from_f64(v).unwrap());
+                    let v = exact.eval(&at);
+                    assert!(r.contains_rational(&v), "{r:?} misses {v} at ({x}, {y})");
+                }
+            }
+        }
+    }
 }
