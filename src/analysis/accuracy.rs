@@ -121,9 +121,27 @@ pub(crate) fn range_enclosing(
     lo: [f64; 2],
     hi: [f64; 2],
 ) -> Option<Interval> {
-    let q = restrict_enclosing(p, lo, hi)?;
-    let c = q.coeffs();
-    Some(c[1..].iter().fold(c[0], |a, b| a.hull(b)))
+    Some(restrict_enclosing(p, lo, hi)?.hull())
+}
+
+/// An enclosure of a bivariate `f` over the box `[lo, hi]` by the mean value form: `f(c)` at
+/// the centre plus its partials `d` over the box (interval evaluation) times `B − c` (the mean
+/// value theorem: `proofs/events.md`, "Enclosures"). Cheaper than restricting `f` to a small
+/// box, and as tight to first order.
+pub(crate) fn mean_value_range(
+    f: &Bernstein<Interval>,
+    d: &[Bernstein<Interval>; 2],
+    lo: [f64; 2],
+    hi: [f64; 2],
+) -> Interval {
+    let c = [0.5 * lo[0] + 0.5 * hi[0], 0.5 * lo[1] + 0.5 * hi[1]];
+    let b = [Interval::new(lo[0], hi[0]), Interval::new(lo[1], hi[1])];
+    let ci = c.map(Interval::point);
+    let mut acc = f.eval(&ci);
+    for k in 0..2 {
+        acc = acc.add(&d[k].eval(&b).mul(&b[k].sub(&ci[k])));
+    }
+    acc
 }
 
 impl SurfaceBounds {
@@ -202,10 +220,6 @@ impl PatchAccuracy {
         ) else {
             return None;
         };
-        let hull = |q: &Bernstein<Interval>| {
-            let c = q.coeffs();
-            c[1..].iter().fold(c[0], |a, b| a.hull(b))
-        };
         let inv_width = |k: usize| {
             Interval::point(hi[k])
                 .sub(&Interval::point(lo[k]))
@@ -213,10 +227,10 @@ impl PatchAccuracy {
                 .filter(|w| w.lo() > 0.0 && w.hi().is_finite())
         };
         let second = |q: &Bernstein<Interval>, axis: usize, direct: usize| match inv_width(axis) {
-            Some(iw) => hull(&q.deriv(axis)).mul(&iw),
+            Some(iw) => q.deriv(axis).hull().mul(&iw),
             None => r(direct),
         };
-        let (gm, go) = (hull(&qm), hull(&qo));
+        let (gm, go) = (qm.hull(), qo.hull());
         let gmm = second(&qm, m, d2(m, m));
         let gmo = second(&qm, o, d2(m, o));
         let goo = second(&qo, o, d2(o, o));

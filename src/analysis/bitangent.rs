@@ -81,11 +81,6 @@ pub fn bitangent_system(
     ([f1, f2, f3], sides)
 }
 
-fn hull(p: &IPoly) -> Interval {
-    let c = p.coeffs();
-    c[1..].iter().fold(c[0], |a, b| a.hull(b))
-}
-
 /// Interval data of a patch for [`DiagonalTest::excludes`]: the homogeneous coordinates and
 /// their partial derivatives of orders 2 and 3, and the deflated normal and tangents.
 pub struct DiagonalTest {
@@ -218,7 +213,7 @@ impl DiagonalTest {
         let Some(n): Option<Vec<Interval>> = self
             .normal
             .iter()
-            .map(|p| restrict(p).map(|q| hull(&q)))
+            .map(|p| restrict(p).map(|q| q.hull()))
             .collect()
         else {
             return false;
@@ -242,7 +237,7 @@ impl DiagonalTest {
             let Some(dw) = restrict(&self.d[3][a]) else {
                 return false;
             };
-            let mut acc = hull(&dw).mul(&sn).neg();
+            let mut acc = dw.hull().mul(&sn).neg();
             for k in 0..3 {
                 let Some(dx) = restrict(&self.d[k][a]) else {
                     return false;

@@ -23,7 +23,6 @@ use super::parabolic::AsymptoticRanges;
 use super::patch_curve::Evaluator;
 use super::render::{svg_document, Layer};
 use crate::model::Model;
-use crate::number::Interval;
 use rayon::prelude::*;
 
 /// The family of an event curve.
@@ -197,14 +196,9 @@ pub fn parabolic_events(model: &Model, parabolic: &Silhouette) -> Vec<SphereCurv
                         .flatten()
                         .copied()
                         .collect();
-                    let fails = |d: &[Interval; 3]| piece_error(d, &drawn).is_none();
-                    let rows =
-                        ranges[piece.patch]
-                            .as_ref()?
-                            .lines(piece.cell[0], piece.cell[1], &fails);
-                    rows.iter()
-                        .filter_map(|d| piece_error(d, &drawn))
-                        .min_by(f64::total_cmp)
+                    ranges[piece.patch]
+                        .as_ref()?
+                        .line_error(piece.cell[0], piece.cell[1], &|d| piece_error(d, &drawn))
                 }))
             } else {
                 None

@@ -9,7 +9,7 @@
 //! `k = L'N' − M'² = W⁸ (LN − M²)` for `L = S_uu · (S_u × S_v)` etc., so k has the sign of the
 //! Gaussian curvature wherever the patch is regular (`proofs/parabolic.md`).
 
-use super::accuracy::range_enclosing;
+use super::accuracy::{mean_value_range, range_enclosing};
 use super::model_curves::{model_curves, CurveRules, Silhouette};
 use super::patch_curve::TangentRanges;
 use crate::bernstein::Bernstein;
@@ -103,26 +103,6 @@ pub(crate) struct AsymptoticRanges {
     tangents: TangentRanges,
 }
 
-/// An enclosure of `f` over the box `[lo, hi]` by the mean value form: `f(c)` at the centre
-/// plus the partials over the box (interval evaluation) times the box's half-widths
-/// (`proofs/events.md`, "Enclosures"). Cheaper than restricting `f` to a small box, and as
-/// tight to first order.
-fn mean_value_range(
-    f: &Bernstein<Interval>,
-    d: &[Bernstein<Interval>; 2],
-    lo: [f64; 2],
-    hi: [f64; 2],
-) -> Interval {
-    let c = [0.5 * lo[0] + 0.5 * hi[0], 0.5 * lo[1] + 0.5 * hi[1]];
-    let b = [Interval::new(lo[0], hi[0]), Interval::new(lo[1], hi[1])];
-    let ci = c.map(Interval::point);
-    let mut acc = f.eval(&ci);
-    for k in 0..2 {
-        acc = acc.add(&d[k].eval(&b).mul(&b[k].sub(&ci[k])));
-    }
-    acc
-}
-
 impl AsymptoticRanges {
     pub(crate) fn new(patch: &RationalPatch) -> AsymptoticRanges {
         let form: [Bernstein<Interval>; 3] =
@@ -135,21 +115,21 @@ impl AsymptoticRanges {
         }
     }
 
-    /// Enclosures over the box `[lo, hi]` of the two rows' directions (either may hold
-    /// zero), the second only when `first_fails` says the first is of no use.
-    pub(crate) fn lines(
+    /// The smallest of `error` over the two rows' direction enclosures on the box `[lo, hi]`,
+    /// rows tried in turn until one gives a value: the row of the larger of `|L'|`, `|N'|`
+    /// first (as for a single point: it is zero only where the form is). The ranges of
+    /// `L', M', N'` come from the mean value form; where neither row gives a value with it,
+    /// they are intersected with the restriction's hull (tighter on large boxes; both enclose
+    /// the range, so their intersection does).
+    pub(crate) fn line_error(
         &self,
         lo: [f64; 2],
         hi: [f64; 2],
-        first_fails: &dyn Fn(&[Interval; 3]) -> bool,
-    ) -> Vec<[Interval; 3]> {
+        error: &dyn Fn(&[Interval; 3]) -> Option<f64>,
+    ) -> Option<f64> {
         if !(0..2).all(|k| 0.0 <= lo[k] && lo[k] <= hi[k] && hi[k] <= 1.0) {
-            return Vec::new();
+            return None;
         }
-        // The mean value form first (cheap, tight on small boxes); where neither row gives a
-        // cone with it, the restriction's hull as well (tighter on large boxes; both enclose
-        // the range, so their intersection does).
-        let mut out = Vec::new();
         for refined in [false, true] {
             let r: Vec<Interval> = (0..3)
                 .map(|k| {
@@ -168,24 +148,22 @@ impl AsymptoticRanges {
                 })
                 .collect();
             let (l, m, n) = (r[0], r[1], r[2]);
-            // The row of the larger of |L'|, |N'| first (as for a single point: it is zero
-            // only where the form is), the other only if that one fails.
             let mid = |x: Interval| (0.5 * (x.lo() + x.hi())).abs();
             let mut rows = [(m.neg(), l), (n, m.neg())];
             if mid(n) > mid(l) {
                 rows.swap(0, 1);
             }
             for (a, b) in rows {
-                if let Some(d) = self.tangents.combination(lo, hi, a, b) {
-                    let done = !first_fails(&d);
-                    out.push(d);
-                    if done {
-                        return out;
-                    }
+                if let Some(e) = self
+                    .tangents
+                    .combination(lo, hi, a, b)
+                    .and_then(|d| error(&d))
+                {
+                    return Some(e);
                 }
             }
         }
-        out
+        None
     }
 }
 

@@ -440,9 +440,7 @@ fn hits_in_front(
 pub(crate) fn range_on(p: &Bernstein<Interval>, lo: &[f64], hi: &[f64]) -> Interval {
     let l: Vec<Interval> = lo.iter().map(|x| Interval::point(*x)).collect();
     let h: Vec<Interval> = hi.iter().map(|x| Interval::point(*x)).collect();
-    let r = p.restrict_box(&l, &h);
-    let c = r.coeffs();
-    c[1..].iter().fold(c[0], |a, b| a.hull(b))
+    p.restrict_box(&l, &h).hull()
 }
 
 /// Boxes `[c − 2^-k, c + 2^-k] ∩ [0, 1]` around a dyadic parameter point, coarse to fine.

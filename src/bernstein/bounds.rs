@@ -38,3 +38,12 @@ impl<N: Number> Bernstein<N> {
         self.coeffs.iter().all(|c| c.sign().is_zero())
     }
 }
+
+impl Bernstein<crate::number::Interval> {
+    /// The hull of the interval coefficients: an enclosure of the polynomial's range over the
+    /// unit box (the convex-hull property, `proofs/coefficient-range.md`).
+    pub fn hull(&self) -> crate::number::Interval {
+        let c = &self.coeffs;
+        c[1..].iter().fold(c[0], |a, b| a.hull(b))
+    }
+}

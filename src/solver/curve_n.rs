@@ -537,11 +537,6 @@ fn refine_local(
 }
 
 /// The hull of a polynomial's coefficients: an enclosure of its range on its box.
-fn range(p: &Bernstein<Interval>) -> Interval {
-    let c = p.coeffs();
-    c[1..].iter().fold(c[0], |a, b| a.hull(b))
-}
-
 fn excludes(p: &Bernstein<Interval>) -> bool {
     let c = p.coeffs();
     c.iter().all(|x| x.lo() > 0.0) || c.iter().all(|x| x.hi() < 0.0)
@@ -665,7 +660,7 @@ impl Solver<'_> {
             .collect();
         let jac: Vec<Vec<Interval>> = partials
             .iter()
-            .map(|row| row.iter().map(range).collect())
+            .map(|row| row.iter().map(Bernstein::hull).collect())
             .collect();
         let minor = |skip: usize| -> Vec<Vec<Interval>> {
             jac.iter()
@@ -821,7 +816,7 @@ impl Solver<'_> {
                 let mut s = Interval::point(0.0);
                 for a in 0..n {
                     for b in a..n {
-                        let h = range(&row[a].deriv(b));
+                        let h = row[a].deriv(b).hull();
                         let term = h.mul(&t[a]).mul(&t[b]);
                         s = s.add(&if a == b { term } else { term.add(&term) });
                     }

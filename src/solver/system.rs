@@ -77,11 +77,6 @@ fn excludes(p: &Bernstein<Interval>) -> bool {
 }
 
 /// The hull of a polynomial's coefficients: an enclosure of its range on the box.
-fn range(p: &Bernstein<Interval>) -> Interval {
-    let c = p.coeffs();
-    c[1..].iter().fold(c[0], |a, b| a.hull(b))
-}
-
 /// The inverse of a small dense matrix (Gauss-Jordan with partial pivoting), or `None` if it
 /// is numerically singular. Any matrix serves as C in Krawczyk's operator: this only affects
 /// whether the test succeeds, never its soundness.
@@ -216,7 +211,7 @@ fn preconditioned(square: &[Bernstein<Interval>]) -> Option<(Matrix, Vec<Vec<Int
     let n = square.len();
     let jac: Vec<Vec<Interval>> = square
         .iter()
-        .map(|f| (0..n).map(|j| range(&f.deriv(j))).collect())
+        .map(|f| (0..n).map(|j| f.deriv(j).hull()).collect())
         .collect();
     precondition(&jac)
 }

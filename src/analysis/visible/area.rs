@@ -31,11 +31,7 @@ pub(super) struct AreaElement {
 
 /// Bounds on `sqrt(n2) / w³` from the coefficient ranges of `n2 = Ñ · Ñ` and `w` on a box.
 fn density(n2: &IPoly, w: Option<&IPoly>) -> [f64; 2] {
-    let range = |p: &IPoly| {
-        let c = p.coeffs();
-        c[1..].iter().fold(c[0], |a, b| a.hull(b))
-    };
-    let r = range(n2);
+    let r = n2.hull();
     // sqrt is correctly rounded: one step outward encloses.
     let a = r.lo().max(0.0).sqrt().next_down().max(0.0);
     let b = r.hi().max(0.0).sqrt().next_up();
@@ -43,7 +39,7 @@ fn density(n2: &IPoly, w: Option<&IPoly>) -> [f64; 2] {
     let d = match w {
         None => root,
         Some(w) => {
-            let wr = range(w);
+            let wr = w.hull();
             let Some(inv) = wr.mul(&wr).mul(&wr).recip().filter(|_| wr.lo() > 0.0) else {
                 return [0.0, f64::INFINITY];
             };

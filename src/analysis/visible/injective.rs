@@ -22,14 +22,9 @@ pub(super) struct JacobianGrid {
     ranges: Vec<[Interval; 4]>,
 }
 
-fn range(p: &IPoly) -> Interval {
-    let c = p.coeffs();
-    c[1..].iter().fold(c[0], |a, b| a.hull(b))
-}
-
 fn fill(out: &mut [[Interval; 4]], side: usize, left: u32, i: usize, j: usize, m: &[IPoly; 4]) {
     if left == 0 {
-        out[i * side + j] = [range(&m[0]), range(&m[1]), range(&m[2]), range(&m[3])];
+        out[i * side + j] = [m[0].hull(), m[1].hull(), m[2].hull(), m[3].hull()];
         return;
     }
     let q: Vec<[IPoly; 4]> = m.iter().map(quarters).collect();
