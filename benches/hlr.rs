@@ -1,7 +1,8 @@
 //! Hidden-line drawings (issue 5): the torus and two spheres from one skew direction (criterion
 //! medians, 1 and 2 threads), and the teapot from (2,3,-2) and (1,2,3) with and without clusters,
-//! timed as whole runs
-//! (each takes seconds: `LIMN_BENCH_TEAPOT=1` to include them, a few runs, the median printed).
+//! and from (1,2,3) drawn to tolerances 1e-6 and 1e-9 (relative to its diagonal), timed as whole
+//! runs (each takes seconds: `LIMN_BENCH_TEAPOT=1` to include them, `LIMN_BENCH_TEAPOT=tol` for
+//! the tolerance runs only; a few runs, the median printed).
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use limn::analysis::hlr::{hidden_lines, HlrOptions};
@@ -44,18 +45,30 @@ fn benches(c: &mut Criterion) {
         }
     }
     g.finish();
-    if std::env::var_os("LIMN_BENCH_TEAPOT").is_some() {
+    if let Some(which) = std::env::var_os("LIMN_BENCH_TEAPOT") {
         let teapot = limn::testing::teapot();
         let off = HlrOptions {
             clusters: false,
             ..HlrOptions::default()
         };
-        for (d, opts, label) in [
-            ([2, 3, -2], &opts, "clusters"),
-            ([1, 2, 3], &opts, "clusters"),
-            ([2, 3, -2], &off, "no-clusters"),
-            ([1, 2, 3], &off, "no-clusters"),
-        ] {
+        let to = |t: f64| HlrOptions {
+            tol: Some(t * teapot.diagonal()),
+            ..HlrOptions::default()
+        };
+        let (tol6, tol9) = (to(1e-6), to(1e-9));
+        let mut runs = vec![
+            ([1, 2, 3], &tol6, "tol-1e-6"),
+            ([1, 2, 3], &tol9, "tol-1e-9"),
+        ];
+        if which != "tol" {
+            runs.extend([
+                ([2, 3, -2], &opts, "clusters"),
+                ([1, 2, 3], &opts, "clusters"),
+                ([2, 3, -2], &off, "no-clusters"),
+                ([1, 2, 3], &off, "no-clusters"),
+            ]);
+        }
+        for (d, opts, label) in runs {
             for threads in [1, 2] {
                 let pool = rayon::ThreadPoolBuilder::new()
                     .num_threads(threads)

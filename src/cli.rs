@@ -115,7 +115,8 @@ enum Command {
         run: RunArgs,
     },
     /// The hidden-line drawing of a model for a view: its silhouettes and patch boundaries,
-    /// each piece with its proven number of surface layers in front (QI: 0 = visible).
+    /// each piece with its proven number of surface layers in front (QI: 0 = visible); with
+    /// --tol, each piece drawn provably within the tolerance of the true line.
     Hlr {
         /// The model file.
         model: PathBuf,
@@ -533,22 +534,21 @@ where
             format,
             run,
         } => {
-            let view = view_run(
-                view,
-                &run,
-                "--tol: not supported by hlr yet (the visibility of each piece is proven; the drawn points are not)",
-            )?;
+            check_run_arguments(&run)?;
+            let view = parse_view(view)?;
+            refuse_overwrite(run.output.iter(), run.force)?;
             let Loaded {
                 name,
                 model: m,
                 weld,
                 opts,
                 pool,
-                ..
+                tol_abs,
             } = load(&model, &run)?;
             let start = std::time::Instant::now();
             let hopts = HlrOptions {
                 curve: opts,
+                tol: tol_abs,
                 ..HlrOptions::default()
             };
             let h = pool

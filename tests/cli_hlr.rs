@@ -86,6 +86,36 @@ fn svg_output_and_no_overwrite() {
     assert_eq!(std::fs::read_to_string(&out).unwrap(), svg);
 }
 
+/// `--tol`: every piece's drawing is bounded within it (relative to the bounding-box diagonal,
+/// here √19 ≈ 4.36), the report says so, and without it the bounds are null.
+#[test]
+fn a_tolerance_bounds_every_piece() {
+    let model = two_squares();
+    let m = model.to_str().unwrap();
+    let json = |extra: &[&str]| -> Value {
+        let mut args = vec!["hlr", m, "--dir", "1,2,-6", "--format", "json"];
+        args.extend_from_slice(extra);
+        let (code, out, err) = limn(&args);
+        assert_eq!(code, Some(0), "{err}");
+        serde_json::from_str(&out).unwrap()
+    };
+    let r = json(&["--tol", "1e-6"]);
+    let tol = r["tolerance"].as_f64().unwrap();
+    assert!((tol / 1e-6 - 19f64.sqrt()).abs() < 1e-9, "{tol}");
+    let largest = r["largest_error"].as_f64().unwrap();
+    assert!(largest <= tol, "{largest} {tol}");
+    for p in r["pieces"].as_array().unwrap() {
+        let e = p["error_bound"].as_f64().unwrap();
+        assert!(e <= largest, "{p}");
+    }
+    let (code, out, _) = limn(&["hlr", m, "--dir", "1,2,-6", "--tol", "1e-6"]);
+    assert_eq!(code, Some(0));
+    assert!(out.contains("accuracy: every piece drawn within"), "{out}");
+    let r = json(&[]);
+    assert!(r["tolerance"].is_null() && r["largest_error"].is_null());
+    assert!(r["pieces"][0]["error_bound"].is_null());
+}
+
 #[test]
 fn bad_arguments_exit_2_with_one_line() {
     let model = two_squares();
@@ -93,7 +123,7 @@ fn bad_arguments_exit_2_with_one_line() {
     for (args, needle) in [
         (vec!["hlr", m, "--dir", "0,0,0"], "zero"),
         (vec!["hlr", m, "--dir", "1,2"], "three numbers"),
-        (vec!["hlr", m, "--dir", "0,0,-1", "--tol", "1e-6"], "--tol"),
+        (vec!["hlr", m, "--dir", "0,0,-1", "--tol", "-1e-6"], "--tol"),
         // An eye between the two squares sees them on both sides.
         (vec!["hlr", m, "--eye", "2,2,1/2"], "in front of the eye"),
         (

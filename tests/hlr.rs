@@ -274,3 +274,126 @@ fn a_silhouette_line_inside_a_patch_is_a_line_of_the_drawing() {
     }
     assert!(checked > 10, "{checked}");
 }
+
+/// Distance from `p` to the unit circle about the origin in the plane with unit normal `n`.
+fn to_great_circle(p: [f64; 3], n: [f64; 3]) -> f64 {
+    let h = p[0] * n[0] + p[1] * n[1] + p[2] * n[2];
+    let perp = [p[0] - h * n[0], p[1] - h * n[1], p[2] - h * n[2]];
+    let r = (perp[0] * perp[0] + perp[1] * perp[1] + perp[2] * perp[2]).sqrt();
+    (h * h + (r - 1.0) * (r - 1.0)).sqrt()
+}
+
+/// Distance from `p` to the segment `[a, b]`.
+fn to_segment(p: [f64; 3], a: [f64; 3], b: [f64; 3]) -> f64 {
+    let d = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+    let w = [p[0] - a[0], p[1] - a[1], p[2] - a[2]];
+    let dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    let t = if dd > 0.0 {
+        ((w[0] * d[0] + w[1] * d[1] + w[2] * d[2]) / dd).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let e = [w[0] - t * d[0], w[1] - t * d[1], w[2] - t * d[2]];
+    (e[0] * e[0] + e[1] * e[1] + e[2] * e[2]).sqrt()
+}
+
+/// Drawing to a tolerance (`proofs/hidden-lines.md`, "Drawing to a tolerance"), on the unit
+/// sphere, whose lines are great circles: the silhouette (normal to the view) and the patch
+/// sides (the equator and the meridians in the planes x = 0 and y = 0). Soundness: every
+/// drawn point (vertices and points along each chord) is within the piece's bound of its
+/// circle. Completeness: every point of each circle is within the largest bound (and the
+/// 1e-12-wide cut enclosures the pieces leave out) of a drawn chord of its kind. A tenfold
+/// tighter tolerance gives more points.
+#[test]
+fn drawing_to_a_tolerance_on_the_sphere() {
+    let model = Model::from_patches(Format::Json, shapes::sphere(&q(1)));
+    let dir = [1i64, 2, 3];
+    let view = View::Direction(dir.map(Rational::from));
+    let norm = (14f64).sqrt();
+    let d = dir.map(|x| x as f64 / norm);
+    let axes = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    let mut points = Vec::new();
+    for tol in [1e-6, 1e-9] {
+        let opts = HlrOptions {
+            tol: Some(tol),
+            ..HlrOptions::default()
+        };
+        let h = hidden_lines(&model, &view, &opts, WeldTolerance::Exact).unwrap();
+        let largest = h.largest_error().expect("every piece bounded");
+        assert!(largest <= tol, "{largest} > {tol}");
+        let mut drawn = 0;
+        for p in &h.pieces {
+            let bound = p.error_bound.expect("bounded");
+            assert!(bound <= tol);
+            // Its circle: the silhouette's, or the side's (the plane its middle point lies in).
+            let mid = p.points[p.points.len() / 2];
+            let n = match p.kind {
+                LineKind::Silhouette => d,
+                LineKind::Boundary => *axes
+                    .iter()
+                    .min_by(|a, b| to_great_circle(mid, **a).total_cmp(&to_great_circle(mid, **b)))
+                    .unwrap(),
+            };
+            for w in p.points.windows(2) {
+                for k in 0..=8 {
+                    let t = k as f64 / 8.0;
+                    let x = [0, 1, 2].map(|i| w[0][i] + t * (w[1][i] - w[0][i]));
+                    let e = to_great_circle(x, n);
+                    assert!(
+                        e <= bound,
+                        "tol {tol}: {:?} piece on patch {} at {x:?}: {e} > {bound}",
+                        p.kind,
+                        p.patch
+                    );
+                }
+            }
+            drawn += p.points.len();
+        }
+        // Completeness: the four circles sampled densely.
+        let circles = [
+            (LineKind::Silhouette, d),
+            (LineKind::Boundary, axes[0]),
+            (LineKind::Boundary, axes[1]),
+            (LineKind::Boundary, axes[2]),
+        ];
+        for (kind, n) in circles {
+            // An orthonormal basis of the circle's plane.
+            let a = if n[0].abs() < 0.9 {
+                [1.0, 0.0, 0.0]
+            } else {
+                [0.0, 1.0, 0.0]
+            };
+            let h0 = a[0] * n[0] + a[1] * n[1] + a[2] * n[2];
+            let e1 = [a[0] - h0 * n[0], a[1] - h0 * n[1], a[2] - h0 * n[2]];
+            let l = (e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]).sqrt();
+            let e1 = e1.map(|x| x / l);
+            let e2 = [
+                n[1] * e1[2] - n[2] * e1[1],
+                n[2] * e1[0] - n[0] * e1[2],
+                n[0] * e1[1] - n[1] * e1[0],
+            ];
+            // (Fewer samples at the finer tolerance: each is checked against every chord.)
+            let samples = if tol > 1e-7 { 2000 } else { 150 };
+            for k in 0..samples {
+                let th = (k as f64 + 0.37) * std::f64::consts::TAU / samples as f64;
+                let x = [0, 1, 2].map(|i| th.cos() * e1[i] + th.sin() * e2[i]);
+                let near = h
+                    .pieces
+                    .iter()
+                    .filter(|p| p.kind == kind)
+                    .flat_map(|p| p.points.windows(2).map(|w| to_segment(x, w[0], w[1])))
+                    .fold(f64::INFINITY, f64::min);
+                assert!(
+                    near <= largest + 1e-11,
+                    "tol {tol}: {kind:?} circle {n:?} at {x:?}: {near}"
+                );
+            }
+        }
+        println!(
+            "sphere, tol {tol}: {} pieces, {drawn} points, largest bound {largest:.3e}",
+            h.pieces.len()
+        );
+        points.push(drawn);
+    }
+    assert!(points[1] > points[0], "{points:?}");
+}

@@ -47,12 +47,13 @@ fn norm(v: &[Interval; 3]) -> f64 {
 
 /// Interval data of one patch and its silhouette function, for accuracy bounds.
 pub struct PatchAccuracy {
-    /// g, then ∂g/∂u, ∂g/∂v, then ∂²g/∂u², ∂²g/∂u∂v, ∂²g/∂v².
+    /// g, then ∂g/∂u, ∂g/∂v, then ∂²g/∂u², ∂²g/∂u∂v, ∂²g/∂v² (empty for a patch traced along
+    /// parameter lines only: [`PatchAccuracy::lines_only`]).
     g: Vec<Bernstein<Interval>>,
     /// Bounds on the patch's derivatives.
     surface: SurfaceBounds,
     /// g in f64, for root estimates (certified afterwards).
-    g_f64: Bernstein<f64>,
+    g_f64: Option<Bernstein<f64>>,
 }
 
 fn derivs(p: &Bernstein<Rational>) -> [Bernstein<Interval>; 6] {
@@ -152,6 +153,26 @@ impl SurfaceBounds {
         }
     }
 
+    /// The centre of an interval enclosure of `S(uv)` (the homogeneous coordinates evaluated
+    /// in interval arithmetic, divided by the weight's) and its half-diagonal, which bounds
+    /// the centre's distance to the exact point.
+    pub(crate) fn point(&self, uv: [f64; 2]) -> Option<([f64; 3], f64)> {
+        let x = uv.map(Interval::point);
+        let w = self.h[3][0].eval(&x);
+        let mut c = [0.0; 3];
+        let mut r = [Interval::point(0.0); 3];
+        for k in 0..3 {
+            let s = div(self.h[k][0].eval(&x), w)?;
+            c[k] = 0.5 * s.lo() + 0.5 * s.hi();
+            // |c − s| ≤ max(c − lo, hi − c), each difference rounded outward.
+            let lo = Interval::point(c[k]).sub(&Interval::point(s.lo())).hi();
+            let hi = Interval::point(s.hi()).sub(&Interval::point(c[k])).hi();
+            r[k] = Interval::point(lo.max(hi));
+        }
+        let e = norm(&r);
+        (c.iter().all(|v| v.is_finite()) && e.is_finite()).then_some((c, e))
+    }
+
     /// Bounds over a box of |∂S/∂m| and of the norms of S_mm, S_mo, S_oo.
     pub(crate) fn bounds(&self, lo: [f64; 2], hi: [f64; 2], m: usize) -> Option<[f64; 4]> {
         let o = 1 - m;
@@ -191,8 +212,31 @@ impl PatchAccuracy {
         PatchAccuracy {
             g: derivs(g).to_vec(),
             surface: SurfaceBounds::new(patch),
-            g_f64: g.convert(Precision::F64),
+            g_f64: Some(g.convert(Precision::F64)),
         }
+    }
+
+    /// The bounds of a patch without a curve function: only lines of constant u or v (sides,
+    /// lines where the function vanishes identically) can be traced; arcs of a curve fail.
+    pub fn lines_only(patch: &RationalPatch) -> PatchAccuracy {
+        PatchAccuracy {
+            g: Vec::new(),
+            surface: SurfaceBounds::new(patch),
+            g_f64: None,
+        }
+    }
+
+    /// The point `S(uv)` of the patch, as the centre of its interval enclosure, and a bound on
+    /// its distance to the exact point (the enclosure's half-diagonal): the drawn point and
+    /// its rounding error. `None` where the weight's enclosure holds 0.
+    pub fn point(&self, uv: [f64; 2]) -> Option<([f64; 3], f64)> {
+        self.surface.point(uv)
+    }
+
+    /// A certified bracket `[x, y]` of the curve's point on the line o = `level` with m in
+    /// `[m0, m1]`, where g is strictly monotone along m (see `point_on_line`).
+    pub fn bracket(&self, m: usize, m0: f64, m1: f64, level: f64) -> Option<(f64, f64)> {
+        self.point_on_line(m, m0, m1, level, 0.5 * (m0 + m1))
     }
 
     /// The range of a polynomial over a box, enclosed: the Bernstein coefficients of its
@@ -207,6 +251,9 @@ impl PatchAccuracy {
 
     /// Bounds of |φ'| and |φ''| over a box where ∂g/∂m has a strict sign.
     fn phi_bounds(&self, lo: [f64; 2], hi: [f64; 2], m: usize) -> Option<(f64, f64)> {
+        if self.g.is_empty() {
+            return None;
+        }
         let o = 1 - m;
         let r = |i: usize| PatchAccuracy::range(&self.g[i], lo, hi);
         // The first partials restricted to the box once; the second partials from their
@@ -256,7 +303,7 @@ impl PatchAccuracy {
     ) -> Option<(f64, f64)> {
         // g on the line o = level, once: in f64 for Newton, in intervals (enclosing the exact
         // coefficients, `de-casteljau-enclosure.md`) for the certified signs.
-        let line = on_line(&self.g_f64, m, level);
+        let line = on_line(self.g_f64.as_ref()?, m, level);
         let dline = line.deriv(0);
         let exact_line = on_line(&self.g[0], m, Interval::point(level));
         let f = |x: f64| line.eval(&[x]);
@@ -327,14 +374,36 @@ impl PatchAccuracy {
     /// get uniformly spaced certified vertices, each checked against the bound with its own
     /// certified error and slope.
     pub fn trace(&self, arc: &Arc, from: [[f64; 2]; 2], to: [[f64; 2]; 2], tol: f64) -> Traced {
+        let graph = match arc.reason {
+            "graph over v" => Some(0),
+            "graph over u" => Some(1),
+            _ => None,
+        };
+        self.trace_in(arc.cell.to_f64(), graph, from, to, tol)
+    }
+
+    /// As [`PatchAccuracy::trace`], for the arc in the box `cell` (`[lo, hi]` in (u, v)) that is
+    /// the graph `m = φ(o)` (`graph = Some(m)`, `∂g/∂m` of strict sign on the box), or for a
+    /// line of constant u or v from the centre of `from` to the centre of `to` (`graph =
+    /// None`: the coordinate that stays constant is the one the ends agree in; the box is
+    /// theirs). The true ends lie in the boxes `from` and `to`, or at least at a level in their
+    /// range in o within their half-extent in m of their centre
+    /// (`proofs/chord-accuracy.md`, "The ends").
+    pub fn trace_in(
+        &self,
+        cell: [[f64; 2]; 2],
+        graph: Option<usize>,
+        from: [[f64; 2]; 2],
+        to: [[f64; 2]; 2],
+        tol: f64,
+    ) -> Traced {
         let center = |b: [[f64; 2]; 2]| [0.5 * (b[0][0] + b[1][0]), 0.5 * (b[0][1] + b[1][1])];
         let half = |b: [[f64; 2]; 2], k: usize| 0.5 * (b[1][k] - b[0][k]);
         let (p0, p1) = (center(from), center(to));
-        let (m, on_edge) = match arc.reason {
-            "graph over v" => (0, false),
-            "graph over u" => (1, false),
-            // On an edge: the varying coordinate is the one the ends differ in.
-            _ => (
+        let (m, on_edge) = match graph {
+            Some(m) => (m, false),
+            // Along a line: the varying coordinate is the one the ends differ in.
+            None => (
                 if (p1[0] - p0[0]).abs() >= (p1[1] - p0[1]).abs() {
                     1
                 } else {
@@ -350,7 +419,7 @@ impl PatchAccuracy {
                 [p0[0].max(p1[0]), p0[1].max(p1[1])],
             ]
         } else {
-            arc.cell.to_f64()
+            cell
         };
         let phi1 = if on_edge {
             Some(0.0)

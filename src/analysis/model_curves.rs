@@ -377,14 +377,7 @@ pub fn model_curves(
                 .collect()
         })
         .collect();
-    // With a tolerance, crossings are located finely enough that their location boxes take a
-    // small part of it (the end pieces of the accuracy bound).
-    let mut opts = opts.clone();
-    if let Some(t) = tol {
-        let rel = t / model.diagonal().max(f64::MIN_POSITIVE);
-        opts.refine_width = opts.refine_width.min((rel * 1e-3).max(1e-15));
-    }
-    let opts = &opts;
+    let opts = &refined_for(opts, model, tol);
     // Lines inside the square on which g vanishes (the circle of vertical normals on a surface
     // of revolution seen from the side) are divided out too, and added back as arcs.
     let lined: Vec<LinedCurve> = solve_gs
@@ -765,6 +758,18 @@ fn ends_at_edge(
 
 /// Points added inside each arc for drawing.
 const DENSIFY_STEPS: usize = 8;
+
+/// The budgets with crossings located finely enough for a tolerance `tol` (model units): their
+/// location boxes then take a small part of it (the end pieces of the accuracy bound,
+/// `proofs/chord-accuracy.md`).
+pub(crate) fn refined_for(opts: &CurveOptions, model: &Model, tol: Option<f64>) -> CurveOptions {
+    let mut opts = opts.clone();
+    if let Some(t) = tol {
+        let rel = t / model.diagonal().max(f64::MIN_POSITIVE);
+        opts.refine_width = opts.refine_width.min((rel * 1e-3).max(1e-15));
+    }
+    opts
+}
 
 /// The points of an arc for drawing: its two crossings (certified locations) and
 /// `steps − 1` points between them. Each is the zero of g on a line across the arc's box along

@@ -27,6 +27,7 @@
 //! curve solver did not resolve, and the assumption that adjacent patches do not cross each
 //! other (penetrations are searched between non-adjacent patches only).
 
+mod drawing;
 mod lemmas;
 mod network;
 mod report;
@@ -34,18 +35,20 @@ mod systems;
 
 pub use report::{HlrReport, UnresolvedPiece};
 
+use drawing::*;
 use lemmas::*;
 use network::*;
 use systems::*;
 
+use super::accuracy::PatchAccuracy;
 use super::facing::{facing, Facing};
 use super::fold_edges::{continuing_stretches, edge_orientations};
-use super::model_curves::zero_across;
+use super::model_curves::refined_for;
 use super::projection::side_point;
 use super::ray::{fix_axis, layers_in_front, RayOptions, Sample, Scene};
 use super::silhouette::{silhouette, DrawPatch, View};
 use crate::model::{Model, WeldTolerance};
-use crate::number::{Precision, Rational};
+use crate::number::Rational;
 use crate::solver::curve2::TIME_LIMIT_REASON;
 use crate::solver::dyadic::Dyadic;
 use crate::solver::precision::Ladder;
@@ -64,8 +67,12 @@ pub struct HlrOptions {
     pub ray: RayOptions,
     /// Budgets of each crossing or penetration system.
     pub crossing: SystemOptions,
-    /// Points drawn per segment piece (at least 2).
+    /// Points drawn per segment piece (at least 2), without a tolerance.
     pub draw_steps: usize,
+    /// The tolerance, in model units, within which every piece's drawing is proven to lie of
+    /// the true piece in space (`proofs/hidden-lines.md`, "Drawing to a tolerance"); `None`:
+    /// drawn at `draw_steps` evenly spaced parameters, not bounded.
+    pub tol: Option<f64>,
     /// Clusters (paper 000, section 4): an edge across which the surface provably continues
     /// in the image ([`super::fold_edges`]) cannot change the QI of what lies behind it, so
     /// its crossings do not cut other lines, and two such edges are not solved against each
@@ -84,6 +91,7 @@ impl Default for HlrOptions {
                 refine_width: 1e-12,
             },
             draw_steps: 8,
+            tol: None,
             clusters: true,
         }
     }
@@ -113,12 +121,16 @@ pub struct HlrPiece {
     pub param: [f64; 2],
     /// The number of surface layers in front of it (`None` if not proven).
     pub qi: Option<usize>,
-    /// Whether the QI is proven (and constant along the piece).
+    /// Whether the QI is proven (and constant along the piece), and, with a tolerance, the
+    /// drawing is proven within it.
     pub certified: bool,
     /// Why not, if not.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub reason: Option<String>,
-    /// Points in space for drawing (not certified positions).
+    /// With a tolerance: a proven bound on the Hausdorff distance in space between the drawn
+    /// polyline and the true piece (`None`: not asked, or not proven within the tolerance).
+    pub error_bound: Option<f64>,
+    /// Points in space for drawing (within `error_bound` of the true piece if it is set).
     pub points: Vec<[f64; 3]>,
     /// The same points as (patch, u, v).
     pub points_uv: Vec<(usize, f64, f64)>,
@@ -168,6 +180,8 @@ pub struct HiddenLines {
     /// Pairs of patches proven to intersect: a line of the first passes through the second
     /// (an isolated penetration root). Their intersection curve is not a line of the drawing.
     pub intersecting_patches: Vec<[usize; 2]>,
+    /// The tolerance asked for, in model units.
+    pub tolerance: Option<f64>,
 }
 
 /// The assumption of every drawing of a model with adjacent patches.
@@ -177,6 +191,16 @@ impl HiddenLines {
     /// Whether every piece's visibility is proven and every silhouette region resolved.
     pub fn is_certified(&self) -> bool {
         self.stats.silhouette_unresolved == 0 && self.pieces.iter().all(|p| p.certified)
+    }
+
+    /// The largest proven drawing error of any piece (`None` without a tolerance, or if a
+    /// piece's drawing is not bounded).
+    pub fn largest_error(&self) -> Option<f64> {
+        self.tolerance?;
+        self.pieces
+            .iter()
+            .map(|p| p.error_bound)
+            .try_fold(0.0f64, |acc, e| Some(acc.max(e?)))
     }
 }
 
@@ -211,7 +235,9 @@ pub fn hidden_lines(
     weld: WeldTolerance,
 ) -> Result<HiddenLines, HlrError> {
     let scene = Scene::new(model, view, weld)?;
-    let sil = silhouette(model, view, &opts.curve, weld, None);
+    // With a tolerance, the arcs' ends are located finely enough for it.
+    let curve = refined_for(&opts.curve, model, opts.tol);
+    let sil = silhouette(model, view, &curve, weld, None);
     let mut stats = HlrStats {
         silhouette_unresolved: sil.unresolved.len(),
         ..HlrStats::default()
@@ -435,10 +461,25 @@ pub fn hidden_lines(
         .iter()
         .map(|p| DrawPatch::new(&p.surface))
         .collect();
+    // The accuracy bounds of each patch with a line, for drawing to a tolerance.
+    let accuracy: Vec<Option<PatchAccuracy>> = (0..model.patches.len())
+        .into_par_iter()
+        .map(|i| {
+            let used = segments.iter().any(|s| s.patch == i);
+            let surface = &model.patches[i].surface;
+            opts.tol.filter(|_| used).map(|_| match sil.solved.get(i) {
+                Some(solved) => PatchAccuracy::new(surface, &solved.g),
+                None => PatchAccuracy::lines_only(surface),
+            })
+        })
+        .collect();
     let per_segment: Vec<(Vec<HlrPiece>, usize, usize)> = segments
         .par_iter()
         .zip(events.par_iter())
-        .map(|(s, ev)| pieces_of(&scene, s, ev, &draws[s.patch], opts))
+        .map(|(s, ev)| {
+            let acc = accuracy[s.patch].as_ref();
+            pieces_of(&scene, s, ev, &draws[s.patch], acc, opts)
+        })
         .collect();
     let mut pieces = Vec::new();
     for (p, samples, refused) in per_segment {
@@ -461,6 +502,7 @@ pub fn hidden_lines(
         stats,
         assumptions,
         intersecting_patches: intersecting.into_iter().collect(),
+        tolerance: opts.tol,
     })
 }
 
@@ -564,12 +606,22 @@ fn dyadic_between(lo: f64, hi: f64) -> Option<Rational> {
     None
 }
 
-/// The pieces of a segment between its events, with their QI.
+/// A stretch of a segment between its events, before it is drawn.
+struct Stretch {
+    param: [f64; 2],
+    from: PieceEnd,
+    to: PieceEnd,
+    qi: Result<usize, String>,
+}
+
+/// The pieces of a segment between its events, with their QI, drawn (to `opts.tol` with
+/// `acc`, the bounds of the segment's patch).
 fn pieces_of(
     scene: &Scene,
     s: &Segment,
     events: &[Event],
     draw: &DrawPatch,
+    acc: Option<&PatchAccuracy>,
     opts: &HlrOptions,
 ) -> (Vec<HlrPiece>, usize, usize) {
     let mut ev: Vec<&Event> = events
@@ -577,64 +629,133 @@ fn pieces_of(
         .filter(|e| e.at[1] > s.range[0] && e.at[0] < s.range[1])
         .collect();
     ev.sort_by(|a, b| a.at[0].total_cmp(&b.at[0]));
-    let mut out: Vec<HlrPiece> = Vec::new();
+    let clip = |x: f64| x.clamp(s.range[0], s.range[1]);
+    // Where the true end of a stretch that stops at `x` lies: the union of the cut
+    // enclosures that hold x (a stretch bounded by an unresolved event ends exactly there).
+    let around = |x: f64| -> PieceEnd {
+        let mut at = [x, x];
+        for e in ev.iter().filter(|e| e.unresolved.is_none()) {
+            let (a, b) = (clip(e.at[0]), clip(e.at[1]));
+            if a <= x && x <= b {
+                at = [at[0].min(a), at[1].max(b)];
+            }
+        }
+        PieceEnd {
+            at,
+            segment_end: at[0] <= s.range[0] || at[1] >= s.range[1],
+        }
+    };
+    let exact = |x: f64| PieceEnd {
+        at: [x, x],
+        segment_end: x <= s.range[0] || x >= s.range[1],
+    };
+    let mut stretches: Vec<Stretch> = Vec::new();
     let (mut samples, mut refused) = (0, 0);
-    let mut cursor = s.range[0];
-    let mut emit = |p0: f64, p1: f64, qi: Result<usize, String>| {
+    let mut push = |st: Stretch| {
         // Consecutive unresolved stretches are reported as one piece (the first reason).
-        if let (Err(_), Some(last)) = (&qi, out.last_mut()) {
-            if !last.certified && last.param[1] >= p0 {
-                let (uv, pts) = draw_points(s, draw, last.param[1], p1, opts.draw_steps);
-                last.param[1] = p1;
-                last.points.extend(pts.into_iter().skip(1));
-                last.points_uv.extend(uv.into_iter().skip(1));
+        if let (Err(_), Some(last)) = (&st.qi, stretches.last_mut()) {
+            if last.qi.is_err() && last.param[1] >= st.param[0] {
+                last.param[1] = st.param[1];
+                last.to = st.to;
                 return;
             }
         }
-        let (points_uv, points) = draw_points(s, draw, p0, p1, opts.draw_steps);
-        let (qi, reason) = match qi {
-            Ok(n) => (Some(n), None),
-            Err(e) => (None, Some(e)),
-        };
-        out.push(HlrPiece {
-            kind: s.kind,
-            patch: s.patch,
-            edge: s.edge,
-            param: [p0, p1],
-            certified: qi.is_some(),
-            qi,
-            reason,
-            points,
-            points_uv,
-        });
+        stretches.push(st);
     };
+    let mut cursor = s.range[0];
+    let mut from = around(cursor);
     let mut i = 0;
     while cursor < s.range[1] {
         // The next event at or after the cursor.
-        let next = ev.get(i).map_or(s.range[1], |e| e.at[0].max(cursor));
+        let next = ev
+            .get(i)
+            .map_or(s.range[1], |e| e.at[0].max(cursor))
+            .min(s.range[1]);
         if next > cursor {
-            let qi = qi_of(
-                scene,
-                s,
-                cursor,
-                next.min(s.range[1]),
-                opts,
-                &mut samples,
-                &mut refused,
-            );
-            emit(cursor, next.min(s.range[1]), qi);
+            let qi = qi_of(scene, s, cursor, next, opts, &mut samples, &mut refused);
+            let to = match ev.get(i) {
+                Some(e) if e.unresolved.is_some() => exact(next),
+                _ => around(next),
+            };
+            push(Stretch {
+                param: [cursor, next],
+                from,
+                to,
+                qi,
+            });
         }
         let Some(e) = ev.get(i) else { break };
         let end = e.at[1].min(s.range[1]).max(cursor);
         if let Some(why) = &e.unresolved {
             if end > next {
-                emit(next, end, Err(why.clone()));
+                push(Stretch {
+                    param: [next, end],
+                    from: exact(next),
+                    to: exact(end),
+                    qi: Err(why.clone()),
+                });
             }
+        }
+        if end > cursor {
+            from = if e.unresolved.is_some() {
+                exact(end)
+            } else {
+                around(end)
+            };
         }
         cursor = cursor.max(end);
         i += 1;
     }
-    (out, samples, refused)
+    let pieces = stretches
+        .into_iter()
+        .map(|st| draw_piece(s, draw, acc, opts, st))
+        .collect();
+    (pieces, samples, refused)
+}
+
+/// A stretch drawn: traced to the tolerance if one is asked (a piece whose drawing is not
+/// certified within it is not certified), else at evenly spaced parameters.
+fn draw_piece(
+    s: &Segment,
+    draw: &DrawPatch,
+    acc: Option<&PatchAccuracy>,
+    opts: &HlrOptions,
+    st: Stretch,
+) -> HlrPiece {
+    let [p0, p1] = st.param;
+    let traced = match (opts.tol, acc) {
+        (Some(tol), Some(acc)) if !opts.curve.past_deadline() => {
+            traced_points(s, acc, st.from, st.to, tol)
+        }
+        _ => None,
+    };
+    let (error_bound, (points_uv, points)) = match traced {
+        Some((drawn, bound)) => (Some(bound), drawn),
+        None => (None, draw_points(s, draw, p0, p1, opts.draw_steps)),
+    };
+    let (qi, mut reason) = match st.qi {
+        Ok(n) => (Some(n), None),
+        Err(e) => (None, Some(e)),
+    };
+    if let (Some(tol), None, None) = (opts.tol, error_bound, &reason) {
+        reason = Some(if opts.curve.past_deadline() {
+            TIME_LIMIT_REASON.to_string()
+        } else {
+            format!("its drawing is not proven within the tolerance {tol:e}")
+        });
+    }
+    HlrPiece {
+        kind: s.kind,
+        patch: s.patch,
+        edge: s.edge,
+        param: [p0, p1],
+        certified: reason.is_none(),
+        qi,
+        reason,
+        error_bound,
+        points,
+        points_uv,
+    }
 }
 
 /// The QI of a segment's stretch `[p0, p1]`, from the first proven sample.
@@ -706,53 +827,4 @@ fn sample_at(s: &Segment, c: &Rational) -> Option<Sample> {
         }
         (None, None) => None,
     }
-}
-
-/// Drawing points as (patch, u, v) and in space.
-type Drawn = (Vec<(usize, f64, f64)>, Vec<[f64; 3]>);
-
-/// Drawing points of a segment's stretch.
-fn draw_points(s: &Segment, draw: &DrawPatch, p0: f64, p1: f64, steps: usize) -> Drawn {
-    let steps = steps.max(2);
-    let mut uv = Vec::new();
-    let gf = s
-        .constraint
-        .as_ref()
-        .map(|g| g.convert::<f64>(Precision::F64));
-    for k in 0..=steps {
-        let t = p0 + (p1 - p0) * k as f64 / steps as f64;
-        match (&gf, s.edge) {
-            (None, Some(edge)) => {
-                let p = match edge {
-                    Edge::V0 => [t, 0.0],
-                    Edge::V1 => [t, 1.0],
-                    Edge::U0 => [0.0, t],
-                    Edge::U1 => [1.0, t],
-                };
-                uv.push(p);
-            }
-            (Some(g), _) => {
-                let m = 1 - s.axis;
-                let (lo, hi) = (s.domain[m].0.to_f64(), s.domain[m].1.to_f64());
-                if let Some(x) = zero_across(g, m, t, lo, hi) {
-                    let mut p = [0.0; 2];
-                    p[m] = x;
-                    p[s.axis] = t;
-                    uv.push(p);
-                }
-            }
-            (None, None) => {
-                if let Some((axis, at)) = s.line {
-                    let mut p = [at.to_f64(); 2];
-                    p[1 - axis] = t;
-                    uv.push(p);
-                }
-            }
-        }
-    }
-    let points = uv.iter().map(|p| draw.eval(p[0], p[1])).collect();
-    (
-        uv.into_iter().map(|p| (s.patch, p[0], p[1])).collect(),
-        points,
-    )
 }

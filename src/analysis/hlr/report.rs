@@ -27,8 +27,14 @@ pub struct HlrReport {
     pub model: String,
     /// The view.
     pub view: serde_json::Value,
-    /// Every piece's visibility proven and every silhouette region resolved.
+    /// Every piece's visibility proven (and, with a tolerance, its drawing within it) and every
+    /// silhouette region resolved.
     pub certified: bool,
+    /// The tolerance asked for (`--tol`), in model units; `null` if none.
+    pub tolerance: Option<f64>,
+    /// With a tolerance: the largest proven drawing error of any piece (`null` if some piece's
+    /// drawing is not bounded).
+    pub largest_error: Option<f64>,
     /// The pieces.
     pub pieces: Vec<HlrPiece>,
     /// The pieces whose visibility is not proven.
@@ -60,6 +66,8 @@ impl HlrReport {
             model: model.to_string(),
             view: view.to_json(),
             certified: h.is_certified(),
+            tolerance: h.tolerance,
+            largest_error: h.largest_error(),
             unresolved: h
                 .pieces
                 .iter()
@@ -98,6 +106,20 @@ impl HlrReport {
                 "NOT fully certified (see unresolved)"
             }
         );
+        match self.tolerance {
+            Some(tol) => {
+                let unbounded = count(&|p| p.error_bound.is_none());
+                t += &match self.largest_error {
+                    Some(e) => format!(
+                        "accuracy: every piece drawn within {e:.3e} of the true line (tolerance {tol:.3e})\n"
+                    ),
+                    None => format!(
+                        "accuracy: tolerance {tol:.3e}; {unbounded} pieces not proven within it\n"
+                    ),
+                }
+            }
+            None => t += "accuracy: the drawn points are not bounded (no tolerance asked)\n",
+        }
         let kinds = [
             Facing::Front,
             Facing::Back,
