@@ -172,7 +172,8 @@ pub(crate) enum KrawczykVerdict {
     Unique(Vec<Interval>),
     /// `K` misses the box: no zero in it.
     NoZero,
-    /// Neither; `worth` is [`worth_testing`]'s answer for this box.
+    /// Neither; `worth`: every row of `|I − C J|` sums to less than 1 (a cheap necessary
+    /// condition for the test to succeed on a slightly larger box).
     Unknown { worth: bool },
 }
 
@@ -272,14 +273,6 @@ pub(crate) fn krawczyk_in_box(
     (0..n)
         .all(|i| a[i] < k[i].lo() && k[i].hi() < c[i])
         .then_some(k)
-}
-
-/// A cheap necessary condition for Krawczyk's test to succeed on the grown box, from the
-/// polynomials already on the box: every row of `|I − C J|` on the box sums to less than 1.
-/// It only decides whether to run the (costly) test; a box that fails it is subdivided, never
-/// decided by it.
-pub(crate) fn worth_testing(square: &[Bernstein<Interval>]) -> bool {
-    preconditioned(square).is_some_and(|(_, m)| rows_contract(&m))
 }
 
 /// The polynomials restricted to a box given in their current coordinates by f64 bounds
@@ -563,13 +556,19 @@ pub fn solve_system_excluding(
         // The box grown by an eighth of its width on each side (exact in f64: dyadic).
         let glo: Vec<f64> = lo.iter().zip(&hi).map(|(a, b)| a - (b - a) / 8.0).collect();
         let ghi: Vec<f64> = lo.iter().zip(&hi).map(|(a, b)| b + (b - a) / 8.0).collect();
-        let tested = if worth_testing(&polys[..n]) {
-            test_box(&whole, &glo, &ghi)
-        } else {
-            None
+        // Krawczyk's operator on the box itself, from the polynomials already on it: a zero
+        // proven unique in the box, none in it, or, where the rows contract, the test on the
+        // grown box (a zero near the box's side is proven by one of the boxes around it).
+        let tested = match krawczyk_verdict(&polys[..n]) {
+            KrawczykVerdict::NoZero => continue,
+            KrawczykVerdict::Unique(k) => to_global(&k, &lo, &hi).map(|enc| (enc, &lo, &hi)),
+            KrawczykVerdict::Unknown { worth: true } => {
+                test_box(&whole, &glo, &ghi).map(|enc| (enc, &glo, &ghi))
+            }
+            KrawczykVerdict::Unknown { worth: false } => None,
         };
-        if let Some(enc) = tested {
-            let unique_in: Vec<[f64; 2]> = glo.iter().zip(&ghi).map(|(a, b)| [*a, *b]).collect();
+        if let Some((enc, ulo, uhi)) = tested {
+            let unique_in: Vec<[f64; 2]> = ulo.iter().zip(uhi).map(|(a, b)| [*a, *b]).collect();
             let outside = enc
                 .iter()
                 .enumerate()
