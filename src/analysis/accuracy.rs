@@ -9,28 +9,9 @@ use crate::surface::RationalPatch;
 /// The most vertices placed on one arc before giving up on the tolerance.
 const MAX_ARC_POINTS: usize = 1 << 18;
 
-/// `x / w` for an interval `w` of strict sign, outward rounded (one ulp each way covers the
-/// round-to-nearest error of each candidate quotient).
+/// `x / w` for an interval `w` of strict sign, outward rounded ([`Interval::checked_div`]).
 pub(crate) fn div(x: Interval, w: Interval) -> Option<Interval> {
-    if !w.sign().is_nonzero() {
-        return None;
-    }
-    let c = [
-        x.lo() / w.lo(),
-        x.lo() / w.hi(),
-        x.hi() / w.lo(),
-        x.hi() / w.hi(),
-    ];
-    if c.iter().any(|v| v.is_nan()) {
-        return None;
-    }
-    let lo = c.iter().copied().fold(f64::INFINITY, f64::min).next_down();
-    let hi = c
-        .iter()
-        .copied()
-        .fold(f64::NEG_INFINITY, f64::max)
-        .next_up();
-    Interval::try_new(lo, hi)
+    x.checked_div(&w)
 }
 
 /// An upper bound of |x| over the interval.
@@ -90,29 +71,8 @@ pub(crate) fn restrict_enclosing(
     lo: [f64; 2],
     hi: [f64; 2],
 ) -> Option<Bernstein<Interval>> {
-    let mut q = p.clone();
-    for axis in 0..2 {
-        let (a, b) = (lo[axis], hi[axis]);
-        if !(0.0 <= a && a < b && b <= 1.0) {
-            if a == b && (0.0..=1.0).contains(&a) {
-                q = q.restrict(axis, &Interval::point(a), &Interval::point(a));
-                continue;
-            }
-            return None;
-        }
-        if a > 0.0 {
-            q = q.subdivide(axis, &Interval::point(a)).1;
-        }
-        if b < 1.0 {
-            let t = div(
-                Interval::point(b).sub(&Interval::point(a)),
-                Interval::point(1.0).sub(&Interval::point(a)),
-            )?;
-            let t = Interval::try_new(t.lo().max(0.0), t.hi().min(1.0))?;
-            q = q.subdivide(axis, &t).0;
-        }
-    }
-    Some(q)
+    let inside = (0..2).all(|k| 0.0 <= lo[k] && lo[k] <= hi[k] && hi[k] <= 1.0);
+    inside.then(|| p.restrict_box_f64(&lo, &hi))
 }
 
 /// The hull of a polynomial's Bernstein coefficients restricted to the box `[lo, hi]`: an
@@ -123,6 +83,35 @@ pub(crate) fn range_enclosing(
     hi: [f64; 2],
 ) -> Option<Interval> {
     Some(restrict_enclosing(p, lo, hi)?.hull())
+}
+
+/// Enclosures over the box `[lo, hi]` (f64 bounds, `lo < hi`) of a bivariate `f` and its
+/// partials, given as `[f, f_u, f_v, f_uu, f_uv, f_vv]`: the hulls of the restrictions of `f`,
+/// `f_u`, `f_v`, and the second partials from the first partials' restrictions: for
+/// `q(ξ) = h(lo + w ξ)`, `dq/dξ = w ∂h/∂x`, so the hull of `q`'s derivative coefficients times
+/// an enclosure of `1/w` encloses `∂h/∂x` over the box (`proofs/chord-accuracy.md`, "The bounds
+/// over a sub-box"). A side of zero width restricts the second partials themselves.
+pub(crate) fn jet_on(f: &[Bernstein<Interval>; 6], lo: &[f64], hi: &[f64]) -> [Interval; 6] {
+    let r = |p: &Bernstein<Interval>| p.restrict_box_f64(lo, hi);
+    let (qu, qv) = (r(&f[1]), r(&f[2]));
+    let inv_width = |k: usize| {
+        Interval::point(hi[k])
+            .sub(&Interval::point(lo[k]))
+            .recip()
+            .filter(|w| w.lo() > 0.0 && w.hi().is_finite())
+    };
+    let second = |q: &Bernstein<Interval>, axis: usize, direct: usize| match inv_width(axis) {
+        Some(iw) => q.deriv_hull(axis).mul(&iw),
+        None => r(&f[direct]).hull(),
+    };
+    [
+        r(&f[0]).hull(),
+        qu.hull(),
+        qv.hull(),
+        second(&qu, 0, 3),
+        second(&qu, 1, 4),
+        second(&qv, 1, 5),
+    ]
 }
 
 /// An enclosure of a bivariate `f` over the box `[lo, hi]` by the mean value form: `f(c)` at
@@ -274,7 +263,7 @@ impl PatchAccuracy {
                 .filter(|w| w.lo() > 0.0 && w.hi().is_finite())
         };
         let second = |q: &Bernstein<Interval>, axis: usize, direct: usize| match inv_width(axis) {
-            Some(iw) => q.deriv(axis).hull().mul(&iw),
+            Some(iw) => q.deriv_hull(axis).mul(&iw),
             None => r(direct),
         };
         let (gm, go) = (qm.hull(), qo.hull());

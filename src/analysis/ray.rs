@@ -23,6 +23,7 @@
 //! The rest of the domain is solved with those boxes excluded
 //! ([`crate::solver::system::solve_system_excluding`]).
 
+use super::accuracy::jet_on;
 pub use super::projection::fix_axis;
 use super::projection::{lift, side_point, ImagePolys, Projection, ProjectionError};
 use super::silhouette::View;
@@ -413,17 +414,9 @@ fn hits_in_front(
                 root.enclosure.iter().map(|e| e[1] - e[0]).fold(0.0, f64::max)
             ));
         }
-        let lo: Vec<Interval> = root
-            .enclosure
-            .iter()
-            .map(|e| Interval::point(e[0]))
-            .collect();
-        let hi: Vec<Interval> = root
-            .enclosure
-            .iter()
-            .map(|e| Interval::point(e[1]))
-            .collect();
-        let on = front_i.restrict_box(&lo, &hi);
+        let lo: Vec<f64> = root.enclosure.iter().map(|e| e[0]).collect();
+        let hi: Vec<f64> = root.enclosure.iter().map(|e| e[1]).collect();
+        let on = front_i.restrict_box_f64(&lo, &hi);
         let c = on.coeffs();
         if c.iter().all(|x| x.hi() < 0.0) {
             count += 1;
@@ -438,9 +431,7 @@ fn hits_in_front(
 
 /// The interval range of a polynomial on a box given by f64 bounds.
 pub(crate) fn range_on(p: &Bernstein<Interval>, lo: &[f64], hi: &[f64]) -> Interval {
-    let l: Vec<Interval> = lo.iter().map(|x| Interval::point(*x)).collect();
-    let h: Vec<Interval> = hi.iter().map(|x| Interval::point(*x)).collect();
-    p.restrict_box(&l, &h).hull()
+    p.restrict_box_f64(lo, hi).hull()
 }
 
 /// Boxes `[c − 2^-k, c + 2^-k] ∩ [0, 1]` around a dyadic parameter point, coarse to fine.
@@ -664,9 +655,7 @@ impl FoldPolys {
 /// along the level curves of κ)`, proven on the box or on a cover of it by sub-boxes
 /// (halved up to `depth` times) that all agree; `None` if not proven.
 fn fold_signs(p: &FoldPolys, lo: &[f64], hi: &[f64], depth: u32) -> Option<[bool; 3]> {
-    let jet = |f: &[Bernstein<Interval>; 6]| -> [Interval; 6] {
-        std::array::from_fn(|i| range_on(&f[i], lo, hi))
-    };
+    let jet = |f: &[Bernstein<Interval>; 6]| jet_on(f, lo, hi);
     let q = jet(&p.q);
     let here = (|| {
         let k = quotient_jet(&jet(&p.kappa), &q)?;

@@ -46,4 +46,30 @@ impl Bernstein<crate::number::Interval> {
         let c = &self.coeffs;
         c[1..].iter().fold(c[0], |a, b| a.hull(b))
     }
+
+    /// `self.deriv(axis).hull()` without forming the derivative: the hull of the coefficient
+    /// differences along `axis`, times the degree (each coefficient `d (c_{i+1} − c_i)` of the
+    /// derivative lies in `d · H`, `H` the hull of the differences, by inclusion
+    /// monotonicity). An enclosure of `∂p/∂x_axis` over the unit box.
+    ///
+    /// # Panics
+    /// If `axis >= nvars`.
+    pub fn deriv_hull(&self, axis: usize) -> crate::number::Interval {
+        use crate::number::{Interval, Number};
+        assert!(axis < self.nvars, "axis out of range");
+        let d = self.degrees[axis];
+        if d == 0 {
+            return Interval::point(0.0);
+        }
+        let stride = self.stride(axis);
+        let mut h: Option<Interval> = None;
+        for block in self.coeffs.chunks_exact((d + 1) * stride) {
+            for (x, y) in block[..d * stride].iter().zip(&block[stride..]) {
+                let diff = y.sub(x);
+                h = Some(h.map_or(diff, |a| a.hull(&diff)));
+            }
+        }
+        let h = h.expect("a polynomial has coefficients");
+        Interval::point(d as f64).mul(&h)
+    }
 }

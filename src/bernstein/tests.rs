@@ -102,6 +102,32 @@ proptest! {
         prop_assert!(encloses_i(&pi.restrict_rational(axis, &a, &b), &r));
     }
 
+    /// The in-place two-split restriction of interval polynomials to an f64 box (any reals,
+    /// inside or outside the unit box, a side of zero width among them) encloses the exact
+    /// restriction.
+    #[test]
+    fn box_restriction_encloses(p in poly(3, 5), ends in prop::collection::vec((-16i64..=80, 0i64..=48), 3)) {
+        let n = p.nvars();
+        let lo: Vec<f64> = ends[..n].iter().map(|e| e.0 as f64 / 64.0).collect();
+        let hi: Vec<f64> = ends[..n].iter().map(|e| (e.0 + e.1) as f64 / 64.0).collect();
+        let q = |x: &f64| Rational::from_f64(*x).unwrap();
+        let (lq, hq): (Vec<Rational>, Vec<Rational>) = (lo.iter().map(q).collect(), hi.iter().map(q).collect());
+        let mut exact = p.clone();
+        for axis in 0..n {
+            exact = exact.restrict(axis, &lq[axis], &hq[axis]);
+        }
+        let pi: Bernstein<Interval> = p.convert(Precision::F64);
+        prop_assert!(encloses_i(&pi.restrict_box_f64(&lo, &hi), &exact));
+    }
+
+    /// The hull of the derivative without forming it holds every exact derivative coefficient.
+    #[test]
+    fn derivative_hull_encloses(p in poly(4, 5), axis in 0usize..4) {
+        let axis = axis % p.nvars();
+        let h = p.convert::<Interval>(Precision::F64).deriv_hull(axis);
+        prop_assert!(p.deriv(axis).coeffs().iter().all(|c| h.contains_rational(c)));
+    }
+
     #[test]
     fn evaluation_encloses(p in poly(4, 6), t in prop::collection::vec(param(), 4)) {
         let x = &t[..p.nvars()];

@@ -192,6 +192,31 @@ impl Interval {
         }
     }
 
+    /// `x / w` for every x in `self` and w in `w`, or `None` if `w` holds 0 (or a bound is
+    /// not finite): the four corner quotients, each rounded to nearest and moved one ulp
+    /// outward, enclose the exact ones.
+    pub fn checked_div(&self, w: &Interval) -> Option<Interval> {
+        if !w.sign().is_nonzero() {
+            return None;
+        }
+        let c = [
+            self.lo / w.lo,
+            self.lo / w.hi,
+            self.hi / w.lo,
+            self.hi / w.hi,
+        ];
+        if c.iter().any(|v| v.is_nan()) {
+            return None;
+        }
+        let lo = c.iter().copied().fold(f64::INFINITY, f64::min).next_down();
+        let hi = c
+            .iter()
+            .copied()
+            .fold(f64::NEG_INFINITY, f64::max)
+            .next_up();
+        Interval::try_new(lo, hi)
+    }
+
     /// The smallest interval containing both.
     pub fn hull(&self, other: &Interval) -> Interval {
         Interval {

@@ -405,11 +405,7 @@ fn face_roots(face: Vec<Bernstein<Interval>>, opts: &SystemOptions) -> Option<Ve
                     lo.iter().zip(&hi).map(|(a, b)| b + (b - a) / 8.0).collect();
                 let grown: Vec<Bernstein<Interval>> = polys
                     .iter()
-                    .map(|p| {
-                        let lo = vec![Interval::point(-0.125); m];
-                        let hi = vec![Interval::point(1.125); m];
-                        p.restrict_box(&lo, &hi)
-                    })
+                    .map(|p| p.restrict_box_f64(&vec![-0.125; m], &vec![1.125; m]))
                     .collect();
                 if let Some(k) = krawczyk(&grown) {
                     let unique: Vec<[f64; 2]> = grown_lo
@@ -816,7 +812,7 @@ impl Solver<'_> {
                 let mut s = Interval::point(0.0);
                 for a in 0..n {
                     for b in a..n {
-                        let h = row[a].deriv(b).hull();
+                        let h = row[a].deriv_hull(b);
                         let term = h.mul(&t[a]).mul(&t[b]);
                         s = s.add(&if a == b { term } else { term.add(&term) });
                     }

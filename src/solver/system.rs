@@ -212,7 +212,7 @@ fn preconditioned(square: &[Bernstein<Interval>]) -> Option<(Matrix, Vec<Vec<Int
     let n = square.len();
     let jac: Vec<Vec<Interval>> = square
         .iter()
-        .map(|f| (0..n).map(|j| f.deriv(j).hull()).collect())
+        .map(|f| (0..n).map(|j| f.deriv_hull(j)).collect())
         .collect();
     precondition(&jac)
 }
@@ -278,9 +278,7 @@ pub(crate) fn krawczyk_in_box(
 /// The polynomials restricted to a box given in their current coordinates by f64 bounds
 /// (exact dyadics here), as interval enclosures.
 fn restrict_all(ps: &[Bernstein<Interval>], lo: &[f64], hi: &[f64]) -> Vec<Bernstein<Interval>> {
-    let lo: Vec<Interval> = lo.iter().map(|&x| Interval::point(x)).collect();
-    let hi: Vec<Interval> = hi.iter().map(|&x| Interval::point(x)).collect();
-    ps.iter().map(|p| p.restrict_box(&lo, &hi)).collect()
+    ps.iter().map(|p| p.restrict_box_f64(lo, hi)).collect()
 }
 
 /// Krawczyk's test on the box `[lo, hi]` of the domain (global coordinates), on polynomials

@@ -111,15 +111,10 @@ pub(super) fn strict_sign(p: &Poly, domain: &DyadicBoxN) -> Option<bool> {
 /// The strict sign of an interval polynomial on a dyadic box (its Bernstein coefficients
 /// there), if all coefficients share one.
 fn sign_on(p: &Bernstein<Interval>, domain: &DyadicBoxN) -> Option<bool> {
-    let lo: Vec<Interval> = domain
-        .iter()
-        .map(|d| Interval::point(d.0.to_f64_bounds().0))
-        .collect();
-    let hi: Vec<Interval> = domain
-        .iter()
-        .map(|d| Interval::point(d.1.to_f64_bounds().1))
-        .collect();
-    match p.restrict_box(&lo, &hi).range_sign() {
+    // Bounds rounded outward: a sign on the larger box holds on the box.
+    let lo: Vec<f64> = domain.iter().map(|d| d.0.to_f64_bounds().0).collect();
+    let hi: Vec<f64> = domain.iter().map(|d| d.1.to_f64_bounds().1).collect();
+    match p.restrict_box_f64(&lo, &hi).range_sign() {
         Sign::Positive => Some(true),
         Sign::Negative => Some(false),
         _ => None,

@@ -81,9 +81,7 @@ impl IntervalImage {
     /// the least and greatest coefficient ratio). `None` if a denominator coefficient is not
     /// proven positive.
     pub(super) fn bounds(&self, lo: &[f64], hi: &[f64]) -> Option<ImageBounds> {
-        let l: Vec<Interval> = lo.iter().map(|x| Interval::point(*x)).collect();
-        let h: Vec<Interval> = hi.iter().map(|x| Interval::point(*x)).collect();
-        let r = |p: &IPoly| p.restrict_box(&l, &h);
+        let r = |p: &IPoly| p.restrict_box_f64(lo, hi);
         let (q, w) = (r(&self.q), r(&self.w));
         Some(ImageBounds {
             x: coefficient_ratio(&r(&self.x), &q)?,
