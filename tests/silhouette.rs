@@ -538,3 +538,48 @@ fn teapot_horizontal_views_cross_the_rim_circle() {
         assert!(check_silhouette(&m, &bad).is_err());
     }
 }
+
+/// The a priori rounding bound of the f64 drawing points (`proofs/chord-accuracy.md`, "The
+/// drawn points"): on the teapot's patches and the exact sphere's (rational), at a grid of
+/// points with awkward coordinates, the f64 point is within the bound of the exact rational
+/// point (the difference computed exactly), and the bound is tiny beside the model's size.
+#[test]
+fn drawn_points_are_within_the_rounding_bound() {
+    use limn::analysis::silhouette::DrawPatch;
+    let mut patches: Vec<limn::surface::RationalPatch> = limn::testing::teapot()
+        .patches
+        .iter()
+        .map(|p| p.surface.clone())
+        .collect();
+    patches.extend(shapes::sphere(&q(7, 3)));
+    let mut checked = 0;
+    for (i, patch) in patches.iter().enumerate() {
+        let draw = DrawPatch::new(patch);
+        let bound = draw.rounding().expect("positive weights");
+        assert!(bound < 1e-12, "patch {i}: {bound}");
+        for a in 0..=6 {
+            for b in 0..=6 {
+                let (u, v) = (a as f64 / 6.0, (b as f64 / 6.0).powf(1.3));
+                let got = draw.eval(u, v);
+                let exact = patch.eval(
+                    &Rational::from_f64(u).unwrap(),
+                    &Rational::from_f64(v).unwrap(),
+                );
+                let d2: Rational = (0..3)
+                    .map(|k| {
+                        let d = Rational::from_f64(got[k]).unwrap() - &exact[k];
+                        Rational::from(&d * &d)
+                    })
+                    .sum();
+                let b2 = Rational::from_f64(bound * bound).unwrap();
+                assert!(
+                    d2 <= b2,
+                    "patch {i} at ({u}, {v}): {} > {bound}",
+                    d2.to_f64().sqrt()
+                );
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked > 1500);
+}

@@ -31,26 +31,28 @@ impl<N: Number> Bernstein<N> {
     pub fn eval(&self, point: &[N]) -> N {
         assert_eq!(point.len(), self.nvars, "point dimension");
         let mut values = self.coeffs.clone();
-        // Contract the last variable first: its fibres are contiguous.
+        let mut count = values.len();
+        // Contract the last variable first: its fibres are contiguous. Fibre f's value goes to
+        // slot f, at or before the fibre's own first slot: only consumed entries are
+        // overwritten, and one buffer serves every axis.
         for axis in (0..self.nvars).rev() {
             let len = self.degrees[axis] + 1;
             let t = &point[axis];
             let one_minus_t = N::from_i64(1, t.precision()).sub(t);
-            let mut out = Vec::with_capacity(values.len() / len);
-            if len - 1 <= HORNER_MAX_DEGREE {
-                let binomials = binomials(len - 1, t.precision());
-                for fiber in values.chunks_exact(len) {
-                    out.push(fiber_value(fiber, t, &one_minus_t, &binomials));
-                }
-            } else {
-                for fiber in values.chunks_exact_mut(len) {
+            let fibres = count / len;
+            for f in 0..fibres {
+                let fiber = &mut values[f * len..(f + 1) * len];
+                let v = if len - 1 <= HORNER_MAX_DEGREE {
+                    fiber_value(fiber, t, &one_minus_t)
+                } else {
                     casteljau_step_all(fiber, t, &one_minus_t);
-                    out.push(fiber[0].clone());
-                }
+                    fiber[0].clone()
+                };
+                values[f] = v;
             }
-            values = out;
+            count = fibres;
         }
-        values.pop().expect("one value remains")
+        values.swap_remove(0)
     }
 }
 
@@ -58,35 +60,26 @@ impl<N: Number> Bernstein<N> {
 /// coefficients are integers below 2⁵³, exact in every number type.
 const HORNER_MAX_DEGREE: usize = 48;
 
-/// The binomial coefficients `C(n, i)`, `i = 0..=n`, as numbers (exact: `n ≤ 48`).
-fn binomials<N: Number>(n: usize, prec: crate::number::Precision) -> Vec<N> {
-    let mut out = Vec::with_capacity(n + 1);
-    let mut c: u64 = 1;
-    for i in 0..=n {
-        out.push(N::from_i64(c as i64, prec));
-        // C(n, i + 1) = C(n, i) (n − i) / (i + 1), exact in u64 for n ≤ 48.
-        c = c * (n - i) as u64 / (i as u64 + 1);
-    }
-    out
-}
-
 /// `Σ c_i C(n, i) tⁱ (1 − t)ⁿ⁻ⁱ` for one contiguous fibre in O(n) operations: the powers of t
 /// are built one multiplication at a time and the sum is nested in `(1 − t)`:
 /// `((c₀(1−t) + C(n,1) t c₁)(1−t) + C(n,2) t² c₂)(1−t) + … + tⁿ cₙ`. The same polynomial
 /// value as de Casteljau's algorithm (exact for exact types); evaluated in interval arithmetic
 /// every operation encloses its exact result, so the value encloses the exact one
 /// (`proofs/de-casteljau-enclosure.md`).
-fn fiber_value<N: Number>(fiber: &[N], t: &N, one_minus_t: &N, binomials: &[N]) -> N {
+fn fiber_value<N: Number>(fiber: &[N], t: &N, one_minus_t: &N) -> N {
     let n = fiber.len() - 1;
     if n == 0 {
         return fiber[0].clone();
     }
+    let prec = t.precision();
     let mut tn = t.clone();
     let mut acc = fiber[0].mul(one_minus_t);
-    for i in 1..n {
-        acc = acc
-            .add(&tn.mul(&binomials[i]).mul(&fiber[i]))
-            .mul(one_minus_t);
+    // C(n, i), exact in u64 for n ≤ 48: C(n, i + 1) = C(n, i) (n − i) / (i + 1).
+    let mut c: u64 = 1;
+    for (i, x) in fiber.iter().enumerate().take(n).skip(1) {
+        c = c * (n - i + 1) as u64 / i as u64;
+        let binomial = N::from_i64(c as i64, prec);
+        acc = acc.add(&tn.mul(&binomial).mul(x)).mul(one_minus_t);
         tn = tn.mul(t);
     }
     acc.add(&tn.mul(&fiber[n]))

@@ -37,7 +37,11 @@ pub fn two_squares(folder: &str) -> PathBuf {
         )
     };
     let text = format!(r#"{{"patches":[{},{}]}}"#, square(0, 0), square(1, 1));
-    std::fs::write(&path, text).unwrap();
+    // Tests run in parallel and share the file: write a private copy and rename it into place
+    // (atomic), so that no test ever reads a half-written file.
+    let private = path.with_extension(format!("{:?}.part", std::thread::current().id()));
+    std::fs::write(&private, text).unwrap();
+    std::fs::rename(&private, &path).unwrap();
     path
 }
 

@@ -110,6 +110,7 @@ fn end_box(s: &Segment, acc: &PatchAccuracy, end: PieceEnd) -> Option<[[f64; 2];
 /// rounding of the drawn points); `None` if the tolerance could not be certified.
 pub(super) fn traced_points(
     s: &Segment,
+    draw: &DrawPatch,
     acc: &PatchAccuracy,
     from: PieceEnd,
     to: PieceEnd,
@@ -134,13 +135,29 @@ pub(super) fn traced_points(
     };
     let traced = acc.trace_in(cell, graph, a, b, tol);
     let chords = traced.bound?;
-    let mut rounding: f64 = 0.0;
-    let mut points = Vec::with_capacity(traced.points.len());
-    for uv in &traced.points {
-        let (p, e) = acc.point(*uv)?;
-        rounding = rounding.max(e);
-        points.push(p);
-    }
+    // The drawn points: in f64 with the patch's a priori rounding bound where the vertices lie
+    // in the unit square, else the centres of interval enclosures.
+    let unit = |x: f64| (0.0..=1.0).contains(&x);
+    let (points, rounding) = match draw.rounding() {
+        Some(r) if traced.points.iter().all(|p| unit(p[0]) && unit(p[1])) => (
+            traced
+                .points
+                .iter()
+                .map(|p| draw.eval(p[0], p[1]))
+                .collect(),
+            r,
+        ),
+        _ => {
+            let mut rounding: f64 = 0.0;
+            let mut points = Vec::with_capacity(traced.points.len());
+            for uv in &traced.points {
+                let (p, e) = acc.point(*uv)?;
+                rounding = rounding.max(e);
+                points.push(p);
+            }
+            (points, rounding)
+        }
+    };
     // The drawn polyline's vertices are within `rounding` of the exact ones, so each drawn
     // segment is within it of the exact chord (a convex combination of the vertex errors).
     let bound = (chords + rounding) * (1.0 + 1e-12);

@@ -725,7 +725,7 @@ fn draw_piece(
     let [p0, p1] = st.param;
     let traced = match (opts.tol, acc) {
         (Some(tol), Some(acc)) if !opts.curve.past_deadline() => {
-            traced_points(s, acc, st.from, st.to, tol)
+            traced_points(s, draw, acc, st.from, st.to, tol)
         }
         _ => None,
     };
