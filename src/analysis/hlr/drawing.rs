@@ -85,10 +85,12 @@ fn end_box(s: &Segment, acc: &PatchAccuracy, end: PieceEnd) -> Option<[[f64; 2];
     }
     let (o, m) = (s.axis, 1 - s.axis);
     if end.segment_end {
+        // The end is the vertex's own only if its interval lies in the vertex's (a crossing
+        // enclosure reaching past the vertex may hold the true end elsewhere: not bounded).
         let v = s
             .vertices
             .iter()
-            .find(|v| v.param[0] <= end.at[1] && end.at[0] <= v.param[1])?;
+            .find(|v| v.param[0] <= end.at[0] && end.at[1] <= v.param[1])?;
         let (_, lo, hi) = v.uv.iter().find(|x| x.0 == s.patch)?;
         let down = |q: &Rational| q.lower_f64();
         let up = |q: &Rational| q.upper_f64();
