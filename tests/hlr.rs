@@ -10,7 +10,7 @@ use limn::surface::RationalPatch;
 use limn::testing::shapes;
 
 mod analytic;
-use analytic::{reference_at, shifted, Shape, Viewer};
+use analytic::{reference_at, shifted, to_segment, Shape, Viewer};
 
 fn q(n: i64) -> Rational {
     Rational::from(n)
@@ -281,20 +281,6 @@ fn to_great_circle(p: [f64; 3], n: [f64; 3]) -> f64 {
     let perp = [p[0] - h * n[0], p[1] - h * n[1], p[2] - h * n[2]];
     let r = (perp[0] * perp[0] + perp[1] * perp[1] + perp[2] * perp[2]).sqrt();
     (h * h + (r - 1.0) * (r - 1.0)).sqrt()
-}
-
-/// Distance from `p` to the segment `[a, b]`.
-fn to_segment(p: [f64; 3], a: [f64; 3], b: [f64; 3]) -> f64 {
-    let d = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-    let w = [p[0] - a[0], p[1] - a[1], p[2] - a[2]];
-    let dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-    let t = if dd > 0.0 {
-        ((w[0] * d[0] + w[1] * d[1] + w[2] * d[2]) / dd).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    let e = [w[0] - t * d[0], w[1] - t * d[1], w[2] - t * d[2]];
-    (e[0] * e[0] + e[1] * e[1] + e[2] * e[2]).sqrt()
 }
 
 /// Drawing to a tolerance (`proofs/hidden-lines.md`, "Drawing to a tolerance"), on the unit

@@ -7,6 +7,8 @@ use limn::number::Rational;
 use limn::solver::{CrossingId, CurveOptions};
 use limn::testing::shapes;
 
+mod analytic;
+
 fn q(a: i64, b: i64) -> Rational {
     Rational::from((a, b))
 }
@@ -388,18 +390,7 @@ fn traced_sphere_silhouette_is_within_the_tolerance() {
                 assert!(dist(p) <= bound + 1e-12, "tol {tol}: {} > {bound}", dist(p));
             }
         }
-        let seg_dist = |p: [f64; 3], a: [f64; 3], b: [f64; 3]| {
-            let d = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-            let w = [p[0] - a[0], p[1] - a[1], p[2] - a[2]];
-            let dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-            let t = if dd > 0.0 {
-                ((w[0] * d[0] + w[1] * d[1] + w[2] * d[2]) / dd).clamp(0.0, 1.0)
-            } else {
-                0.0
-            };
-            let r = [w[0] - t * d[0], w[1] - t * d[1], w[2] - t * d[2]];
-            (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt()
-        };
+        let seg_dist = analytic::to_segment;
         let mut pts = c.points.clone();
         if c.closed {
             pts.push(pts[0]);

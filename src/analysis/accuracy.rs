@@ -92,6 +92,12 @@ pub(crate) fn range_enclosing(
 /// an enclosure of `1/w` encloses `∂h/∂x` over the box (`proofs/chord-accuracy.md`, "The bounds
 /// over a sub-box"). A side of zero width restricts the second partials themselves.
 pub(crate) fn jet_on(f: &[Bernstein<Interval>; 6], lo: &[f64], hi: &[f64]) -> [Interval; 6] {
+    let [fu, fv, fuu, fuv, fvv] = partials_on(f, lo, hi);
+    [f[0].restrict_box_f64(lo, hi).hull(), fu, fv, fuu, fuv, fvv]
+}
+
+/// [`jet_on`] without the value: `[f_u, f_v, f_uu, f_uv, f_vv]` over the box.
+pub(crate) fn partials_on(f: &[Bernstein<Interval>; 6], lo: &[f64], hi: &[f64]) -> [Interval; 5] {
     let r = |p: &Bernstein<Interval>| p.restrict_box_f64(lo, hi);
     let (qu, qv) = (r(&f[1]), r(&f[2]));
     let inv_width = |k: usize| {
@@ -105,7 +111,6 @@ pub(crate) fn jet_on(f: &[Bernstein<Interval>; 6], lo: &[f64], hi: &[f64]) -> [I
         None => r(&f[direct]).hull(),
     };
     [
-        r(&f[0]).hull(),
         qu.hull(),
         qv.hull(),
         second(&qu, 0, 3),
@@ -244,32 +249,18 @@ impl PatchAccuracy {
             return None;
         }
         let o = 1 - m;
-        let r = |i: usize| PatchAccuracy::range(&self.g[i], lo, hi);
-        // The first partials restricted to the box once; the second partials from their
-        // restrictions' derivatives: for q(ξ) = h(lo + w ξ), dq/dξ = w ∂h/∂x, so the hull of
-        // the derivative's coefficients times 1/w encloses ∂h/∂x over the box (interval
-        // arithmetic on an exact identity). A side of zero width falls back to restricting the
-        // second partial itself.
-        let (Some(qm), Some(qo)) = (
-            restrict_enclosing(&self.g[d1(m)], lo, hi),
-            restrict_enclosing(&self.g[d1(o)], lo, hi),
-        ) else {
+        // The partials over the box (`partials_on`: the second partials from the first
+        // partials' restrictions); the box lies in the unit square.
+        let inside = (0..2).all(|k| 0.0 <= lo[k] && lo[k] <= hi[k] && hi[k] <= 1.0);
+        if !inside {
             return None;
-        };
-        let inv_width = |k: usize| {
-            Interval::point(hi[k])
-                .sub(&Interval::point(lo[k]))
-                .recip()
-                .filter(|w| w.lo() > 0.0 && w.hi().is_finite())
-        };
-        let second = |q: &Bernstein<Interval>, axis: usize, direct: usize| match inv_width(axis) {
-            Some(iw) => q.deriv_hull(axis).mul(&iw),
-            None => r(direct),
-        };
-        let (gm, go) = (qm.hull(), qo.hull());
-        let gmm = second(&qm, m, d2(m, m));
-        let gmo = second(&qm, o, d2(m, o));
-        let goo = second(&qo, o, d2(o, o));
+        }
+        let g: &[Bernstein<Interval>; 6] = self.g.as_slice().try_into().ok()?;
+        let p = partials_on(g, &lo, &hi);
+        // p = [g_u, g_v, g_uu, g_uv, g_vv].
+        let gm = p[m];
+        let go = p[o];
+        let (gmm, gmo, goo) = (p[d2(m, m) - 1], p[d2(m, o) - 1], p[d2(o, o) - 1]);
         let p1 = div(go, gm)?.neg();
         let two = Interval::point(2.0);
         let num = goo.add(&two.mul(&gmo).mul(&p1)).add(&gmm.mul(&p1).mul(&p1));

@@ -1,6 +1,7 @@
 //! Independent analytic references shared by the tests: ray counts through spheres (a
 //! quadratic) and tori (the quartic, sampled and bisected in f64), with ambiguous cases
-//! (near-tangent rays, roots near the point) refused rather than guessed.
+//! (near-tangent rays, roots near the point) refused rather than guessed; the distance from a
+//! point to a segment.
 #![allow(dead_code)]
 
 use limn::number::Rational;
@@ -115,4 +116,18 @@ pub fn reference_at(shapes: &[Shape], p: [f64; 3], viewer: Viewer) -> Option<usi
             Some(n)
         }
     }
+}
+
+/// Distance from `p` to the segment `[a, b]`.
+pub fn to_segment(p: [f64; 3], a: [f64; 3], b: [f64; 3]) -> f64 {
+    let d = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+    let w = [p[0] - a[0], p[1] - a[1], p[2] - a[2]];
+    let dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    let t = if dd > 0.0 {
+        ((w[0] * d[0] + w[1] * d[1] + w[2] * d[2]) / dd).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let e = [w[0] - t * d[0], w[1] - t * d[1], w[2] - t * d[2]];
+    (e[0] * e[0] + e[1] * e[1] + e[2] * e[2]).sqrt()
 }
