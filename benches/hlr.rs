@@ -2,7 +2,8 @@
 //! medians, 1 and 2 threads), and the teapot from (2,3,-2) and (1,2,3) with and without clusters,
 //! and from (1,2,3) drawn to tolerances 1e-6 and 1e-9 (relative to its diagonal), timed as whole
 //! runs (each takes seconds: `LIMN_BENCH_TEAPOT=1` to include them, `LIMN_BENCH_TEAPOT=tol` for
-//! the tolerance runs only; a few runs, the median printed).
+//! the tolerance runs only; a few runs, the median printed); the IGES coil spring from (2,3,-2)
+//! with and without clusters, one run each on 2 threads (`LIMN_BENCH_SPRING=1`; minutes).
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use limn::analysis::hlr::{hidden_lines, HlrOptions};
@@ -94,5 +95,40 @@ fn benches(c: &mut Criterion) {
     }
 }
 
-criterion_group!(hlr_benches, benches);
+/// The IGES coil spring (1,062 patches) from (2,3,-2), with and without clusters, one run each
+/// on 2 threads (`LIMN_BENCH_SPRING=1`; minutes).
+fn spring(_: &mut Criterion) {
+    if std::env::var_os("LIMN_BENCH_SPRING").is_none() {
+        return;
+    }
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/fixtures/iges/occt/bug22869_Spring.igs"
+    );
+    let spring = limn::io::read_model(std::path::Path::new(path)).unwrap();
+    let weld = limn::model::default_weld(&spring);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .unwrap();
+    for clusters in [true, false] {
+        let opts = HlrOptions {
+            clusters,
+            ..HlrOptions::default()
+        };
+        let t = std::time::Instant::now();
+        let h = pool
+            .install(|| hidden_lines(&spring, &view([2, 3, -2]), &opts, weld))
+            .unwrap();
+        println!(
+            "hlr/spring-2,3,-2-clusters-{clusters}-2-threads: {:.1} s, {} pieces, {} unresolved, {} cluster pairs",
+            t.elapsed().as_secs_f64(),
+            h.pieces.len(),
+            h.pieces.iter().filter(|p| !p.certified).count(),
+            h.stats.cluster_pairs
+        );
+    }
+}
+
+criterion_group!(hlr_benches, benches, spring);
 criterion_main!(hlr_benches);
