@@ -1329,7 +1329,8 @@ impl DrawPatch {
         self.rounding
     }
 
-    /// The point S(u, v) in f64 (for drawing; not a certified quantity).
+    /// The point S(u, v) in f64, for drawing: on the unit square within
+    /// [`DrawPatch::rounding`] of the exact point.
     pub fn eval(&self, u: f64, v: f64) -> [f64; 3] {
         let x = [u, v];
         let c: Vec<f64> = self.h.iter().map(|p| p.eval(&x)).collect();
