@@ -7,14 +7,12 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use limn::analysis::hlr::{hidden_lines, HlrOptions};
-use limn::analysis::silhouette::View;
 use limn::model::{Format, Model, WeldTolerance};
 use limn::number::Rational;
 use limn::testing::shapes;
 
-fn view(d: [i64; 3]) -> View {
-    View::Direction(d.map(Rational::from))
-}
+mod common;
+use common::{pool, spring_if_asked, view};
 
 fn benches(c: &mut Criterion) {
     let opts = HlrOptions::default();
@@ -32,10 +30,7 @@ fn benches(c: &mut Criterion) {
     let mut g = c.benchmark_group("hlr");
     g.sample_size(10);
     for threads in [1, 2] {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
+        let pool = pool(threads);
         for (name, m) in [("torus", &torus), ("two-spheres", &spheres)] {
             g.bench_function(format!("{name}-1,2,3-{threads}-threads"), |b| {
                 b.iter(|| {
@@ -71,10 +66,7 @@ fn benches(c: &mut Criterion) {
         }
         for (d, opts, label) in runs {
             for threads in [1, 2] {
-                let pool = rayon::ThreadPoolBuilder::new()
-                    .num_threads(threads)
-                    .build()
-                    .unwrap();
+                let pool = pool(threads);
                 let mut times: Vec<f64> = (0..3)
                     .map(|_| {
                         let t = std::time::Instant::now();
@@ -98,19 +90,10 @@ fn benches(c: &mut Criterion) {
 /// The IGES coil spring (1,062 patches) from (2,3,-2), with and without clusters, one run each
 /// on 2 threads (`LIMN_BENCH_SPRING=1`; minutes).
 fn spring(_: &mut Criterion) {
-    if std::env::var_os("LIMN_BENCH_SPRING").is_none() {
+    let Some((spring, weld)) = spring_if_asked() else {
         return;
-    }
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/fixtures/iges/occt/bug22869_Spring.igs"
-    );
-    let spring = limn::io::read_model(std::path::Path::new(path)).unwrap();
-    let weld = limn::model::default_weld(&spring);
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(2)
-        .build()
-        .unwrap();
+    };
+    let pool = pool(2);
     for clusters in [true, false] {
         let opts = HlrOptions {
             clusters,

@@ -4,22 +4,13 @@
 //! 3 runs is printed with the bounds on the visible share of the area).
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use limn::analysis::silhouette::View;
 use limn::analysis::visible::{visible_regions, VisibleOptions};
 use limn::model::{Format, Model, WeldTolerance};
 use limn::number::Rational;
 use limn::testing::shapes;
 
-fn view(d: [i64; 3]) -> View {
-    View::Direction(d.map(Rational::from))
-}
-
-fn pool(threads: usize) -> rayon::ThreadPool {
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .unwrap()
-}
+mod common;
+use common::{pool, spring_if_asked, view};
 
 fn benches(c: &mut Criterion) {
     let mut spheres = shapes::sphere(&Rational::from(1));
@@ -93,15 +84,9 @@ fn benches(c: &mut Criterion) {
 /// The IGES coil spring (1,062 patches) at cell depth 5, with and without clusters, one whole
 /// run each on 2 threads (`LIMN_BENCH_SPRING=1`; minutes).
 fn spring() {
-    if std::env::var_os("LIMN_BENCH_SPRING").is_none() {
+    let Some((spring, weld)) = spring_if_asked() else {
         return;
-    }
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/fixtures/iges/occt/bug22869_Spring.igs"
-    );
-    let spring = limn::io::read_model(std::path::Path::new(path)).unwrap();
-    let weld = limn::model::default_weld(&spring);
+    };
     for clusters in [true, false] {
         let opts = VisibleOptions {
             max_depth: 5,
