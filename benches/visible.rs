@@ -20,8 +20,10 @@ fn benches(c: &mut Criterion) {
         }),
     );
     let spheres = Model::from_patches(Format::Json, spheres);
+    // The cells (the trimming curves are timed on their own below).
     let opts = VisibleOptions {
         max_depth: 6,
+        trimming: false,
         ..VisibleOptions::default()
     };
     let mut g = c.benchmark_group("visible");
@@ -49,6 +51,7 @@ fn benches(c: &mut Criterion) {
                     let opts = VisibleOptions {
                         max_depth: depth,
                         clusters,
+                        trimming: false,
                         ..VisibleOptions::default()
                     };
                     let pool = pool(threads);
@@ -91,6 +94,7 @@ fn spring() {
         let opts = VisibleOptions {
             max_depth: 5,
             clusters,
+            trimming: false,
             ..VisibleOptions::default()
         };
         let t = std::time::Instant::now();
@@ -107,7 +111,48 @@ fn spring() {
     }
 }
 
+/// The trimming curves of the teapot from (2,3,-2) at tol 1e-6 (cell depth 4: the cells are
+/// not what is timed), 1 and 2 threads, one whole run each, against the same run without them
+/// (`LIMN_BENCH_TEAPOT=trim`).
+fn trimming() {
+    if std::env::var("LIMN_BENCH_TEAPOT").ok().as_deref() != Some("trim") {
+        return;
+    }
+    let teapot = limn::testing::teapot();
+    let tol = 1e-6 * teapot.diagonal();
+    for threads in [1, 2] {
+        for trimming in [false, true] {
+            let opts = VisibleOptions {
+                max_depth: 4,
+                trimming,
+                tol: Some(tol),
+                ..VisibleOptions::default()
+            };
+            let t = std::time::Instant::now();
+            let r = pool(threads)
+                .install(|| {
+                    visible_regions(&teapot, &view([2, 3, -2]), &opts, WeldTolerance::Exact)
+                })
+                .unwrap();
+            let s = &r.stats;
+            println!(
+                "visible/teapot-2,3,-2-trimming-{trimming}-tol-1e-6-{threads}-threads: {:.2} s, {} trimming curves ({} certified), {} loops ({} closed), {} pieces without an occlusion curve",
+                t.elapsed().as_secs_f64(),
+                s.trim_curves,
+                s.certified_trim_curves,
+                s.trim_loops,
+                s.closed_trim_loops,
+                r.missing_occlusions.len()
+            );
+        }
+    }
+}
+
 fn all(c: &mut Criterion) {
+    if std::env::var("LIMN_BENCH_TEAPOT").ok().as_deref() == Some("trim") {
+        trimming();
+        return;
+    }
     benches(c);
     spring();
 }

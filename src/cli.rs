@@ -130,13 +130,16 @@ enum Command {
     },
     /// The visible regions of each patch for a view: the parameter cells proven visible,
     /// hidden (with their QI) or unresolved, the loops around the proven-visible and the
-    /// possibly-visible cells, and bounds on each patch's visible share of its area.
+    /// possibly-visible cells, bounds on each patch's visible share of its area, and the
+    /// trimming curves that bound its visible region (silhouette, boundary and occlusion
+    /// curves, each within a proven distance with --tol), chained into loops.
     Visible {
         /// The model file.
         model: PathBuf,
         #[command(flatten)]
         view: ViewArgs,
-        /// Output format (svg: the visible cells drawn in the view plane, unresolved in red).
+        /// Output format (svg: the visible cells drawn in the view plane, unresolved in red,
+        /// the trimming curves on top).
         #[arg(long, value_enum, default_value_t = HlrFormat::Text)]
         format: HlrFormat,
         /// The deepest cell level: cells of side 2^-depth in the parameter square, 1..=14.
@@ -588,23 +591,22 @@ where
                     "--cell-depth: expected 1..=14, found {cell_depth}"
                 )));
             }
-            let view = view_run(
-                view,
-                &run,
-                "--tol: not supported by visible (the cells are exact dyadic boxes; --cell-depth sets their size)",
-            )?;
+            check_run_arguments(&run)?;
+            let view = parse_view(view)?;
+            refuse_overwrite(run.output.iter(), run.force)?;
             let Loaded {
                 name,
                 model: m,
                 weld,
                 opts,
                 pool,
-                ..
+                tol_abs,
             } = load(&model, &run)?;
             let start = std::time::Instant::now();
             let vopts = VisibleOptions {
                 curve: opts,
                 max_depth: cell_depth,
+                tol: tol_abs,
                 ..VisibleOptions::default()
             };
             let r = pool
@@ -846,19 +848,6 @@ fn refuse_overwrite<'a>(
         }
     }
     Ok(())
-}
-
-/// Writes a command's text to the file asked for, or to standard output.
-/// The checks of a command that takes a view and does not take `--tol` (refused with
-/// `no_tol`): the run arguments, the view, and no overwrite without `--force`.
-fn view_run(view: ViewArgs, run: &RunArgs, no_tol: &str) -> Result<View, CliError> {
-    check_run_arguments(run)?;
-    let view = parse_view(view)?;
-    if run.tol.is_some() {
-        return Err(CliError::input(no_tol));
-    }
-    refuse_overwrite(run.output.iter(), run.force)?;
-    Ok(view)
 }
 
 /// A report as pretty JSON with a final newline (exit code 1 if it cannot be written).

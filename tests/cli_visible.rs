@@ -91,6 +91,69 @@ fn two_squares_json_contract_and_closed_form() {
     assert!(r["patches"][0]["cells"].as_array().unwrap().is_empty());
 }
 
+/// The trimming curves of the lower square: its visible sides, and the occlusion curves of
+/// the upper square's two free edges `x = 1` and `y = 1` (for the other coordinate in
+/// `[1, 2]`), lifted onto `z = 0` along `(1, 2, −40)`: `x = 1 + 1/40` and `y = 1 + 2/40`, in
+/// its parameters `u = x/2`, `v = y/2`.
+#[test]
+fn trimming_curves_of_the_two_squares() {
+    let model = two_squares();
+    let (code, out, err) = limn(&[
+        "visible",
+        model.to_str().unwrap(),
+        "--dir",
+        "1,2,-40",
+        "--format",
+        "json",
+        "--tol",
+        "1e-6",
+    ]);
+    assert_eq!(code, Some(0), "{err}");
+    let r: Value = serde_json::from_str(&out).unwrap();
+    let lower = &r["patches"][0];
+    let curves = lower["trimming"].as_array().unwrap();
+    let (u0, v0) = ((1.0 + 1.0 / 40.0) / 2.0, (1.0 + 2.0 / 40.0) / 2.0);
+    let mut occlusion = 0;
+    for c in curves {
+        assert_eq!(c["certified"], true, "{c}");
+        let bound = c["error_bound"].as_f64().unwrap();
+        assert!(bound <= 1e-6 * 8f64.sqrt() * 1.000001, "{bound}");
+        for w in c["uv"].as_array().unwrap() {
+            let [u, v] = pair(w);
+            match c["kind"].as_str().unwrap() {
+                "occlusion" => {
+                    // In parameters, half the distance in space.
+                    let off = (u - u0).abs().min((v - v0).abs());
+                    assert!(off <= bound, "({u}, {v}): {off:e} > {bound:e}");
+                    assert!(u >= u0 - bound && v >= v0 - bound, "({u}, {v})");
+                }
+                "boundary" => {
+                    let on_side = u.min(v).min(1.0 - u).min(1.0 - v);
+                    assert!(on_side <= 1e-15, "({u}, {v})");
+                    // Not in the hidden corner.
+                    assert!(u <= u0 + bound || v <= v0 + bound, "({u}, {v})");
+                }
+                k => panic!("{k}"),
+            }
+        }
+        occlusion += usize::from(c["kind"] == "occlusion");
+    }
+    assert!(occlusion >= 2, "{occlusion}");
+    let loops = lower["trim_loops"].as_array().unwrap();
+    assert_eq!(loops.len(), 1, "{loops:?}");
+    assert_eq!(loops[0]["closed"], true);
+    // The upper square: its four sides, one closed loop, nothing in front of it.
+    let upper = &r["patches"][1];
+    assert!(upper["trimming"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .all(|c| c["kind"] == "boundary"));
+    assert_eq!(upper["trim_loops"][0]["closed"], true);
+    assert!(r["missing_occlusions"].as_array().unwrap().is_empty());
+    assert!(r["stats"]["closed_trim_loops"].as_u64().unwrap() >= 2);
+}
+
 #[test]
 fn text_and_svg_output_and_no_overwrite() {
     let model = two_squares();
@@ -134,7 +197,7 @@ fn bad_arguments_exit_2_with_one_line() {
             "--cell-depth",
         ),
         (
-            vec!["visible", m, "--dir", "1,2,-40", "--tol", "1e-6"],
+            vec!["visible", m, "--dir", "1,2,-40", "--tol", "-1e-6"],
             "--tol",
         ),
         (

@@ -37,7 +37,7 @@ pub struct PatchAccuracy {
     g_f64: Option<Bernstein<f64>>,
 }
 
-fn derivs(p: &Bernstein<Rational>) -> [Bernstein<Interval>; 6] {
+pub(crate) fn derivs(p: &Bernstein<Rational>) -> [Bernstein<Interval>; 6] {
     let (pu, pv) = (p.deriv(0), p.deriv(1));
     let (puu, puv, pvv) = (pu.deriv(0), pu.deriv(1), pv.deriv(1));
     [p, &pu, &pv, &puu, &puv, &pvv].map(|q| q.convert(Precision::F64))
@@ -64,15 +64,16 @@ pub(crate) struct SurfaceBounds {
 
 /// A bivariate polynomial restricted to the box `[lo, hi]` of its domain, as interval
 /// Bernstein coefficients that enclose the exact restriction's (two de Casteljau splits per
-/// axis, the second at an interval parameter that contains the exact one); `None` for a box
-/// outside `[0, 1]²`. A side of zero width restricts to that line.
+/// axis, the second at an interval parameter that contains the exact one); the box may reach
+/// past `[0, 1]²` (the polynomial is defined everywhere); `None` if it is not a box
+/// (`lo > hi`, or not finite). A side of zero width restricts to that line.
 pub(crate) fn restrict_enclosing(
     p: &Bernstein<Interval>,
     lo: [f64; 2],
     hi: [f64; 2],
 ) -> Option<Bernstein<Interval>> {
-    let inside = (0..2).all(|k| 0.0 <= lo[k] && lo[k] <= hi[k] && hi[k] <= 1.0);
-    inside.then(|| p.restrict_box_f64(&lo, &hi))
+    let is_box = (0..2).all(|k| lo[k] <= hi[k] && lo[k].is_finite() && hi[k].is_finite());
+    is_box.then(|| p.restrict_box_f64(&lo, &hi))
 }
 
 /// The hull of a polynomial's Bernstein coefficients restricted to the box `[lo, hi]`: an

@@ -61,12 +61,65 @@ pub fn continues_on(o: &[IPoly; 2], lo: f64, hi: f64) -> bool {
     (a.lo() > 0.0 && b.hi() < 0.0) || (a.hi() < 0.0 && b.lo() > 0.0)
 }
 
+/// Whether the edge is provably a fold on the stretch `[lo, hi]`: the two orientations have
+/// the same strict sign there, so both patches lie on one side of the edge's image and it is
+/// outline (what lies behind it shows on the other side).
+pub fn folds_on(o: &[IPoly; 2], lo: f64, hi: f64) -> bool {
+    let (a, b) = (range_on(&o[0], &[lo], &[hi]), range_on(&o[1], &[lo], &[hi]));
+    (a.lo() > 0.0 && b.lo() > 0.0) || (a.hi() < 0.0 && b.hi() < 0.0)
+}
+
 /// The stretches of `[0, 1]` across which the surface provably continues: the dyadic
 /// intervals (halved up to `depth` times) on which [`continues_on`] holds, adjacent ones
 /// merged, in increasing order.
 pub fn continuing_stretches(o: &[IPoly; 2], depth: u32) -> Vec<[f64; 2]> {
-    fn go(o: &[IPoly; 2], lo: f64, hi: f64, depth: u32, out: &mut Vec<[f64; 2]>) {
+    stretches_where(o, depth, continues_on)
+}
+
+/// The stretches of `[0, 1]` across which the surface provably continues, and those on which
+/// the edge is provably a fold: dyadic intervals halved where neither is proven, up to
+/// `depth` times and `budget` intervals in all (so near a junction, where both orientations
+/// vanish, the undecided stretch shrinks to `2^-depth`), adjacent ones merged.
+pub fn edge_roles(o: &[IPoly; 2], depth: u32, budget: usize) -> [Vec<[f64; 2]>; 2] {
+    let mut out: [Vec<[f64; 2]>; 2] = [Vec::new(), Vec::new()];
+    let mut stack = vec![(0.0f64, 1.0f64, 0u32)];
+    let mut visited = 0;
+    let push = |v: &mut Vec<[f64; 2]>, lo: f64, hi: f64| match v.last_mut() {
+        Some(last) if last[1] == lo => last[1] = hi,
+        _ => v.push([lo, hi]),
+    };
+    // Depth first, left to right, so each list comes out in increasing order.
+    while let Some((lo, hi, d)) = stack.pop() {
+        visited += 1;
         if continues_on(o, lo, hi) {
+            push(&mut out[0], lo, hi);
+        } else if folds_on(o, lo, hi) {
+            push(&mut out[1], lo, hi);
+        } else if d < depth && visited + stack.len() < budget {
+            let mid = 0.5 * (lo + hi);
+            stack.push((mid, hi, d + 1));
+            stack.push((lo, mid, d + 1));
+        }
+    }
+    out
+}
+
+/// The dyadic stretches of `[0, 1]` (halved up to `depth` times) on which `holds` does,
+/// adjacent ones merged, in increasing order.
+pub fn stretches_where(
+    o: &[IPoly; 2],
+    depth: u32,
+    holds: fn(&[IPoly; 2], f64, f64) -> bool,
+) -> Vec<[f64; 2]> {
+    fn go(
+        o: &[IPoly; 2],
+        lo: f64,
+        hi: f64,
+        depth: u32,
+        holds: fn(&[IPoly; 2], f64, f64) -> bool,
+        out: &mut Vec<[f64; 2]>,
+    ) {
+        if holds(o, lo, hi) {
             match out.last_mut() {
                 Some(last) if last[1] == lo => last[1] = hi,
                 _ => out.push([lo, hi]),
@@ -75,11 +128,11 @@ pub fn continuing_stretches(o: &[IPoly; 2], depth: u32) -> Vec<[f64; 2]> {
         }
         if depth > 0 {
             let mid = 0.5 * (lo + hi);
-            go(o, lo, mid, depth - 1, out);
-            go(o, mid, hi, depth - 1, out);
+            go(o, lo, mid, depth - 1, holds, out);
+            go(o, mid, hi, depth - 1, holds, out);
         }
     }
     let mut out = Vec::new();
-    go(o, 0.0, 1.0, depth, &mut out);
+    go(o, 0.0, 1.0, depth, holds, &mut out);
     out
 }

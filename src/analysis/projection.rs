@@ -18,7 +18,7 @@
 use super::silhouette::View;
 use crate::bernstein::Bernstein;
 use crate::model::Model;
-use crate::number::{Number, Rational};
+use crate::number::{Interval, Number, Precision, Rational};
 use crate::surface::{Edge, RationalPatch};
 
 type Poly = Bernstein<Rational>;
@@ -224,6 +224,73 @@ impl Projection {
             q,
             depth,
             w: w.clone(),
+        }
+    }
+
+    /// An enclosure of the images of all points of a box of space (`[lo, hi]` per
+    /// coordinate), outward; `None` for an eye if the box is not proven in front of it.
+    pub fn image_of_box(&self, lo: [f64; 3], hi: [f64; 3]) -> Option<[Interval; 2]> {
+        let iv = |q: &Rational| Interval::from_rational(q, Precision::F64);
+        let rel: [Interval; 3] = std::array::from_fn(|k| {
+            let x = Interval::new(lo[k], hi[k]);
+            match &self.view {
+                View::Direction(_) => x,
+                View::Eye(e) => x.sub(&iv(&e[k])),
+            }
+        });
+        let dot = |c: &[Rational; 3]| {
+            (0..3).fold(Interval::point(0.0), |acc, k| {
+                acc.add(&iv(&c[k]).mul(&rel[k]))
+            })
+        };
+        let (x, y) = (dot(&self.a), dot(&self.b));
+        match self.view {
+            View::Direction(_) => Some([x, y]),
+            View::Eye(_) => {
+                let q = dot(&self.d);
+                (q.lo() > 0.0).then_some(())?;
+                Some([x.checked_div(&q)?, y.checked_div(&q)?])
+            }
+        }
+    }
+
+    /// Per image coordinate, a bound on its gradient's Euclidean length over a box of space
+    /// (so two points of the box at distance `e` have images within that times `e` in that
+    /// coordinate); `None` for an eye if the box is not proven in front of it.
+    pub fn image_gradient_bound(&self, lo: [f64; 3], hi: [f64; 3]) -> Option<[f64; 2]> {
+        let iv = |q: &Rational| Interval::from_rational(q, Precision::F64);
+        let norm = |v: [Interval; 3]| {
+            let s = v
+                .iter()
+                .fold(Interval::point(0.0), |acc, x| acc.add(&x.mul(x)));
+            s.hi().sqrt() * (1.0 + 1e-12)
+        };
+        match &self.view {
+            View::Direction(_) => {
+                Some([self.a.clone(), self.b.clone()].map(|c| norm(c.each_ref().map(iv))))
+            }
+            View::Eye(e) => {
+                // ∇(c·P / d·P) = (c − (c·P / d·P) d) / (d·P), P = X − E.
+                let rel: [Interval; 3] =
+                    std::array::from_fn(|k| Interval::new(lo[k], hi[k]).sub(&iv(&e[k])));
+                let dot = |c: &[Rational; 3]| {
+                    (0..3).fold(Interval::point(0.0), |acc, k| {
+                        acc.add(&iv(&c[k]).mul(&rel[k]))
+                    })
+                };
+                let q = dot(&self.d);
+                (q.lo() > 0.0).then_some(())?;
+                let mut out = [0.0; 2];
+                for (o, c) in out.iter_mut().zip([&self.a, &self.b]) {
+                    let f = dot(c).checked_div(&q)?;
+                    let g: [Interval; 3] = std::array::from_fn(|k| {
+                        iv(&c[k]).sub(&f.mul(&iv(&self.d[k]))).checked_div(&q)
+                    })
+                    .map(|x| x.unwrap_or(Interval::new(f64::NEG_INFINITY, f64::INFINITY)));
+                    *o = norm(g);
+                }
+                out.iter().all(|x| x.is_finite()).then_some(out)
+            }
         }
     }
 

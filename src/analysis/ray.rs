@@ -208,6 +208,23 @@ struct PointSystem {
     constraints: Vec<Poly>,
 }
 
+impl Sample {
+    /// An enclosure of the sample's parameters on its patch, `[lo, hi]` per parameter.
+    pub fn uv_enclosure(&self) -> [[f64; 2]; 2] {
+        let r = |q: &Rational| [q.lower_f64(), q.upper_f64()];
+        match self {
+            Sample::Exact { uv, .. } => [r(&uv[0]), r(&uv[1])],
+            Sample::Silhouette {
+                axis, at, interval, ..
+            } => {
+                let mut out = [r(at), r(at)];
+                out[1 - axis] = [interval[0].lower_f64(), interval[1].upper_f64()];
+                out
+            }
+        }
+    }
+}
+
 fn dy(q: &Rational) -> Option<Dyadic> {
     Dyadic::from_rational(q)
 }
@@ -264,6 +281,70 @@ impl Sample {
 /// Why the count is not proven (the caller may try another sample): a ray through a patch
 /// edge or tangent to a patch, a point whose own sheet could not be excluded, a budget.
 pub fn layers_in_front(scene: &Scene, sample: &Sample, opts: &RayOptions) -> Result<usize, String> {
+    layers(scene, sample, opts, false).map(|l| l.in_front)
+}
+
+/// A point of the model on a sample's ray, behind the sample.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Hit {
+    /// Its patch.
+    pub patch: usize,
+    /// An enclosure of its parameters, `[lo, hi]` per variable (the only point of the patch
+    /// on the ray in it).
+    pub uv: [[f64; 2]; 2],
+    /// An enclosure of its depth.
+    pub depth: [f64; 2],
+}
+
+/// The surface layers on a sample's ray: how many lie in front of it (proven), and, if
+/// asked, the points behind it (proven complete, or why not).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Layers {
+    /// The QI of the sample.
+    pub in_front: usize,
+    /// Every point of the model on the ray behind the sample (each with its own enclosure),
+    /// or why they are not proven; empty if not asked.
+    pub behind: Result<Vec<Hit>, String>,
+}
+
+impl Layers {
+    /// The nearest point behind the sample, if its depth is proven less than every other's
+    /// (`Ok(None)`: nothing behind, the background).
+    ///
+    /// # Errors
+    /// The points behind are not proven, or two of them are not proven apart in depth.
+    pub fn first_behind(&self) -> Result<Option<&Hit>, String> {
+        let behind = self.behind.as_ref().map_err(|e| e.clone())?;
+        let Some(first) = behind
+            .iter()
+            .min_by(|a, b| a.depth[0].total_cmp(&b.depth[0]))
+        else {
+            return Ok(None);
+        };
+        let apart = behind
+            .iter()
+            .filter(|h| !std::ptr::eq(*h, first))
+            .all(|h| first.depth[1] < h.depth[0]);
+        if apart {
+            Ok(Some(first))
+        } else {
+            Err("two surface points behind it are not proven apart in depth".into())
+        }
+    }
+}
+
+/// [`layers_in_front`], and with `behind` also every point of the model behind the sample on
+/// its ray ([`Layers::behind`]).
+///
+/// # Errors
+/// As [`layers_in_front`] (a problem behind the sample only makes [`Layers::behind`] an
+/// error).
+pub fn layers(
+    scene: &Scene,
+    sample: &Sample,
+    opts: &RayOptions,
+    behind: bool,
+) -> Result<Layers, String> {
     let ps = sample
         .system(scene)
         .ok_or("the sample's parameters are not dyadic")?;
@@ -271,8 +352,13 @@ pub fn layers_in_front(scene: &Scene, sample: &Sample, opts: &RayOptions) -> Res
     // The sample's depth range and image box, to skip patches that cannot be in front.
     let pb = point_bounds(&ps);
     let mut count = 0;
+    let mut hits: Result<Vec<Hit>, String> = if behind {
+        Ok(Vec::new())
+    } else {
+        Err("not asked".into())
+    };
     for (j, jb) in scene.bounds.iter().enumerate() {
-        if !jb.meets_image(&pb) || jb.depth[0] > pb.depth[1] {
+        if !jb.meets_image(&pb) || (!behind && jb.depth[0] > pb.depth[1]) {
             continue;
         }
         // Parameters of the sheets through the sample on this patch, each to be excluded.
@@ -322,9 +408,19 @@ pub fn layers_in_front(scene: &Scene, sample: &Sample, opts: &RayOptions) -> Res
                 }
             }
         }
-        count += hits_in_front(scene, &ps, j, &exclude, opts)?;
+        let (front, back) = hits_on_ray(scene, &ps, j, &exclude, opts)?;
+        count += front;
+        if let Ok(all) = &mut hits {
+            match back {
+                Ok(b) => all.extend(b),
+                Err(e) => hits = Err(e),
+            }
+        }
     }
-    Ok(count)
+    Ok(Layers {
+        in_front: count,
+        behind: if behind { hits } else { Ok(Vec::new()) },
+    })
 }
 
 /// Whether the image map of patch `j` is singular at exact parameters (its Jacobian's
@@ -362,14 +458,16 @@ fn point_bounds(ps: &PointSystem) -> ImageBounds {
     }
 }
 
-/// The hits of patch `j` in front of the point, outside the excluded boxes.
-fn hits_in_front(
+/// The hits of patch `j` on the point's ray outside the excluded boxes: how many in front of
+/// the point, and those behind it (or why they are not proven: a root behind near the
+/// boundary of the patch).
+fn hits_on_ray(
     scene: &Scene,
     ps: &PointSystem,
     j: usize,
     exclude: &[DyadicBoxN],
     opts: &RayOptions,
-) -> Result<usize, String> {
+) -> Result<(usize, Result<Vec<Hit>, String>), String> {
     let n = ps.nvars + 2;
     let pim = &ps.image;
     let jim = &scene.images[j];
@@ -388,6 +486,7 @@ fn hits_in_front(
     square.extend(ps.constraints.iter().map(|c| lift(c, n, 0)));
     let front_i: Bernstein<Interval> = front.convert(Precision::F64);
     let mut count = 0;
+    let mut behind: Result<Vec<Hit>, String> = Ok(Vec::new());
     let mut domain = ps.domain.clone();
     domain.extend([(Dyadic::ZERO, Dyadic::ONE), (Dyadic::ZERO, Dyadic::ONE)]);
     let exclude: Vec<DyadicBoxN> = exclude
@@ -408,25 +507,52 @@ fn hits_in_front(
                 .zip(e)
                 .all(|(x, d)| x[1] >= d.0.to_f64() && x[0] <= d.1.to_f64())
         });
-        if !inside_domain || near_excluded {
-            return Err(format!(
-                "the ray passes within {:.1e} of the boundary of patch {j} (or of the box around the point's own sheet)",
-                root.enclosure.iter().map(|e| e[1] - e[0]).fold(0.0, f64::max)
-            ));
-        }
         let lo: Vec<f64> = root.enclosure.iter().map(|e| e[0]).collect();
         let hi: Vec<f64> = root.enclosure.iter().map(|e| e[1]).collect();
         let on = front_i.restrict_box_f64(&lo, &hi);
         let c = on.coeffs();
+        let is_behind = c.iter().all(|x| x.lo() > 0.0);
+        let near = || {
+            format!(
+                "the ray passes within {:.1e} of the boundary of patch {j} (or of the box around the point's own sheet)",
+                root.enclosure.iter().map(|e| e[1] - e[0]).fold(0.0, f64::max)
+            )
+        };
+        if is_behind {
+            if !inside_domain || near_excluded {
+                behind = Err(near());
+            } else if let Ok(b) = &mut behind {
+                let uv = [root.enclosure[ps.nvars], root.enclosure[ps.nvars + 1]];
+                b.push(Hit {
+                    patch: j,
+                    uv,
+                    depth: depth_on(&jim.depth, &jim.w, uv),
+                });
+            }
+            continue;
+        }
+        if !inside_domain || near_excluded {
+            return Err(near());
+        }
         if c.iter().all(|x| x.hi() < 0.0) {
             count += 1;
-        } else if !c.iter().all(|x| x.lo() > 0.0) {
+        } else {
             return Err(format!(
                 "the ray meets patch {j} at the depth of the point (the point may lie on patch {j})"
             ));
         }
     }
-    Ok(count)
+    Ok((count, behind))
+}
+
+/// An enclosure of `depth / w` on a parameter box (`w > 0`).
+fn depth_on(depth: &Poly, w: &Poly, uv: [[f64; 2]; 2]) -> [f64; 2] {
+    let (lo, hi) = ([uv[0][0], uv[1][0]], [uv[0][1], uv[1][1]]);
+    let on = |p: &Poly| range_on(&p.convert(Precision::F64), &lo, &hi);
+    match on(depth).checked_div(&on(w)) {
+        Some(d) => [d.lo(), d.hi()],
+        None => [f64::NEG_INFINITY, f64::INFINITY],
+    }
 }
 
 /// The interval range of a polynomial on a box given by f64 bounds.

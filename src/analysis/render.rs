@@ -295,6 +295,15 @@ pub fn visible_svg(model: &Model, view: &View, r: &VisibleRegions, title: &str) 
         }
         v
     };
+    // The trimming curves, certified (blue) or not (orange, dashed).
+    let trimming = |certified: bool| -> Vec<Vec<[f64; 2]>> {
+        r.patches
+            .iter()
+            .flat_map(|p| &p.trimming)
+            .filter(|c| c.certified == certified)
+            .map(|c| c.xyz.iter().map(|&x| proj.project(x)).collect())
+            .collect()
+    };
     let layers = [
         Layer {
             style: r##"fill="#c9d3de" stroke="none""##,
@@ -309,6 +318,16 @@ pub fn visible_svg(model: &Model, view: &View, r: &VisibleRegions, title: &str) 
         Layer {
             style: r##"stroke="#000" stroke-width="0.6""##,
             paths: loops.into_iter().map(closed).collect(),
+            filled: false,
+        },
+        Layer {
+            style: r##"stroke="#1f5fbf" stroke-width="1.1""##,
+            paths: trimming(true),
+            filled: false,
+        },
+        Layer {
+            style: r##"stroke="#e08000" stroke-width="1.1" stroke-dasharray="3,2""##,
+            paths: trimming(false),
             filled: false,
         },
     ];

@@ -585,6 +585,14 @@ pub fn solve_system_excluding(
                 let trivial = excluded_f64.iter().any(|e| within(&clipped, e));
                 if !seen && !trivial {
                     let enc = refine(square, &unique_in, enc, opts.refine_width);
+                    // Refined, a root that straddled the boundary may be proven outside.
+                    if enc
+                        .iter()
+                        .enumerate()
+                        .any(|(i, e)| e[1] < dlo[i] || e[0] > dhi[i])
+                    {
+                        continue;
+                    }
                     let inside = enc
                         .iter()
                         .enumerate()

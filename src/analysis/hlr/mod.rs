@@ -42,13 +42,14 @@ use systems::*;
 
 use super::accuracy::PatchAccuracy;
 use super::facing::{facing, Facing};
-use super::fold_edges::{continuing_stretches, edge_orientations};
+use super::fold_edges::{continuing_stretches, edge_orientations, edge_roles};
 use super::model_curves::refined_for;
 use super::projection::side_point;
-use super::ray::{fix_axis, layers_in_front, RayOptions, Sample, Scene};
+use super::ray::{fix_axis, layers, Hit, RayOptions, Sample, Scene};
 use super::silhouette::{silhouette, DrawPatch, View};
+use crate::bernstein::Bernstein;
 use crate::model::{Model, WeldTolerance};
-use crate::number::Rational;
+use crate::number::{Interval, Rational};
 use crate::solver::curve2::TIME_LIMIT_REASON;
 use crate::solver::dyadic::Dyadic;
 use crate::solver::precision::Ladder;
@@ -78,6 +79,10 @@ pub struct HlrOptions {
     /// its crossings do not cut other lines, and two such edges are not solved against each
     /// other. Off: every edge is treated as outline (for measuring what clusters save).
     pub clusters: bool,
+    /// Find, for every visible outline piece, the first surface point behind it at its
+    /// sample ([`HlrPiece::behind`]): the start of its occlusion curve on the surface behind
+    /// (the visible regions' trimming curves). Costs the ray tests of the patches behind.
+    pub behind: bool,
 }
 
 impl Default for HlrOptions {
@@ -93,6 +98,7 @@ impl Default for HlrOptions {
             draw_steps: 8,
             tol: None,
             clusters: true,
+            behind: false,
         }
     }
 }
@@ -134,6 +140,25 @@ pub struct HlrPiece {
     pub points: Vec<[f64; 3]>,
     /// The same points as (patch, u, v).
     pub points_uv: Vec<(usize, f64, f64)>,
+    /// Whether the piece is proven outline, where what lies behind it shows on one side (a
+    /// silhouette, a free side, a fold edge: `true`), proven not (a side inside a cluster:
+    /// `false`), or neither (`None`).
+    pub outline: Option<bool>,
+    /// With [`HlrOptions::behind`], for a visible outline piece: what lies right behind it.
+    #[serde(skip)]
+    pub behind: Option<Behind>,
+}
+
+/// What lies right behind a visible outline piece, on the ray through its sample point.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Behind {
+    /// The sample: the patch of the piece and an enclosure of its parameters there.
+    pub patch: usize,
+    /// `[lo, hi]` per parameter (a point for a sample on a side or a line).
+    pub uv: [[f64; 2]; 2],
+    /// The first point of the model behind the sample (`None`: nothing, the background), or
+    /// why it is not proven.
+    pub first: Result<Option<Hit>, String>,
 }
 
 /// Counts of the work done.
@@ -249,18 +274,20 @@ pub fn hidden_lines(
     segments.extend(arcs);
     segments.extend(lines);
     stats.segments = segments.len();
-    // Where segments are not outline (cannot change the QI of what lies behind them).
-    let inner: Vec<Vec<[f64; 2]>> = segments
+    // Where segments are not outline (cannot change the QI of what lies behind them), and,
+    // when what lies behind them is wanted, where they are proven folds (outline): then
+    // decided finely near junctions, and every segment is cut where its role is decided.
+    let roles: Vec<[Vec<[f64; 2]>; 2]> = segments
         .par_iter()
-        .map(|s| {
-            if opts.clusters {
-                inside_cluster(&scene, s)
-            } else {
-                Vec::new()
-            }
+        .map(|s| match (opts.clusters, opts.behind) {
+            (false, _) => [Vec::new(), Vec::new()],
+            (true, false) => [inside_cluster(&scene, s), Vec::new()],
+            (true, true) => edge_roles_of(&scene, s),
         })
         .collect();
+    let inner: Vec<Vec<[f64; 2]>> = roles.iter().map(|r| r[0].clone()).collect();
     let outline: Vec<bool> = inner.iter().map(|v| v != &[[0.0, 1.0]]).collect();
+    let folds: Vec<Vec<[f64; 2]>> = roles.into_iter().map(|[_, f]| f).collect();
     stats.cluster_edges = outline.iter().filter(|o| !**o).count();
     // Whether a segment can change the QI of what crosses behind it at parameters in `at`.
     let outline_at =
@@ -294,6 +321,14 @@ pub fn hidden_lines(
         // Every vertex inside a segment cuts it (a junction on a side).
         for v in &sa.vertices {
             events[a].push(Event::cut(v.param));
+        }
+        // With what lies behind wanted, so does every end of a stretch of decided role.
+        if opts.behind {
+            for r in inner[a].iter().chain(&folds[a]) {
+                for x in r.iter().filter(|x| sa.range[0] < **x && **x < sa.range[1]) {
+                    events[a].push(Event::cut([*x, *x]));
+                }
+            }
         }
         match (&sa.constraint, &sa.monotone) {
             // A stretch the surface continues across cannot change its own QI.
@@ -476,9 +511,10 @@ pub fn hidden_lines(
     let per_segment: Vec<(Vec<HlrPiece>, usize, usize)> = segments
         .par_iter()
         .zip(events.par_iter())
-        .map(|(s, ev)| {
+        .zip(inner.par_iter().zip(folds.par_iter()))
+        .map(|((s, ev), (inner, folds))| {
             let acc = accuracy[s.patch].as_ref();
-            pieces_of(&scene, s, ev, &draws[s.patch], acc, opts)
+            pieces_of(&scene, s, ev, &draws[s.patch], acc, [inner, folds], opts)
         })
         .collect();
     let mut pieces = Vec::new();
@@ -575,14 +611,23 @@ impl Event {
 /// The stretches of a segment's parameter across which it is a shared edge and the surface
 /// provably continues in the image ([`super::fold_edges`]); empty for other segments.
 fn inside_cluster(scene: &Scene, s: &Segment) -> Vec<[f64; 2]> {
+    orientations_of(scene, s).map_or_else(Vec::new, |o| continuing_stretches(&o, 6))
+}
+
+/// [`super::fold_edges::edge_roles`] of a side shared by two patches (deep near junctions);
+/// none for other segments.
+fn edge_roles_of(scene: &Scene, s: &Segment) -> [Vec<[f64; 2]>; 2] {
+    orientations_of(scene, s).map_or_else(|| [Vec::new(), Vec::new()], |o| edge_roles(&o, 24, 2048))
+}
+
+/// The two orientations along a side shared by exactly two patches ([`super::fold_edges`]).
+fn orientations_of(scene: &Scene, s: &Segment) -> Option<[Bernstein<Interval>; 2]> {
     if s.kind != LineKind::Boundary || s.line.is_some() {
-        return Vec::new();
+        return None;
     }
     let users: Option<Vec<(usize, Edge, bool)>> =
         s.on.iter().map(|&(p, e, r)| Some((p, e?, r))).collect();
-    users
-        .and_then(|u| edge_orientations(scene, &u))
-        .map_or_else(Vec::new, |o| continuing_stretches(&o, 6))
+    edge_orientations(scene, &users?)
 }
 
 /// Whether two patches share a corner or an edge.
@@ -612,6 +657,7 @@ struct Stretch {
     from: PieceEnd,
     to: PieceEnd,
     qi: Result<usize, String>,
+    behind: Option<Behind>,
 }
 
 /// The pieces of a segment between its events, with their QI, drawn (to `opts.tol` with
@@ -622,8 +668,23 @@ fn pieces_of(
     events: &[Event],
     draw: &DrawPatch,
     acc: Option<&PatchAccuracy>,
+    [inner, folds]: [&[[f64; 2]]; 2],
     opts: &HlrOptions,
 ) -> (Vec<HlrPiece>, usize, usize) {
+    // Whether a stretch is proven outline (a silhouette, a free side, a fold edge), proven
+    // not (inside a cluster), or neither.
+    let within = |rs: &[[f64; 2]], p0: f64, p1: f64| rs.iter().any(|r| r[0] <= p0 && p1 <= r[1]);
+    let outline = |p0: f64, p1: f64| -> Option<bool> {
+        if s.kind == LineKind::Silhouette || s.on.len() == 1 {
+            Some(true)
+        } else if within(inner, p0, p1) {
+            Some(false)
+        } else if s.on.len() == 2 && within(folds, p0, p1) {
+            Some(true)
+        } else {
+            None
+        }
+    };
     let mut ev: Vec<&Event> = events
         .iter()
         .filter(|e| e.at[1] > s.range[0] && e.at[0] < s.range[1])
@@ -672,7 +733,20 @@ fn pieces_of(
             .map_or(s.range[1], |e| e.at[0].max(cursor))
             .min(s.range[1]);
         if next > cursor {
-            let qi = qi_of(scene, s, cursor, next, opts, &mut samples, &mut refused);
+            let want_behind = opts.behind && outline(cursor, next) == Some(true);
+            let found = qi_of(
+                scene,
+                s,
+                [cursor, next],
+                want_behind,
+                opts,
+                &mut samples,
+                &mut refused,
+            );
+            let (qi, behind) = match found {
+                Ok((n, b)) => (Ok(n), b),
+                Err(e) => (Err(e), None),
+            };
             let to = match ev.get(i) {
                 Some(e) if e.unresolved.is_some() => exact(next),
                 _ => around(next),
@@ -682,6 +756,7 @@ fn pieces_of(
                 from,
                 to,
                 qi,
+                behind,
             });
         }
         let Some(e) = ev.get(i) else { break };
@@ -693,6 +768,7 @@ fn pieces_of(
                     from: exact(next),
                     to: exact(end),
                     qi: Err(why.clone()),
+                    behind: None,
                 });
             }
         }
@@ -708,7 +784,10 @@ fn pieces_of(
     }
     let pieces = stretches
         .into_iter()
-        .map(|st| draw_piece(s, draw, acc, opts, st))
+        .map(|st| {
+            let out = outline(st.param[0], st.param[1]);
+            draw_piece(s, draw, acc, opts, out, st)
+        })
         .collect();
     (pieces, samples, refused)
 }
@@ -720,6 +799,7 @@ fn draw_piece(
     draw: &DrawPatch,
     acc: Option<&PatchAccuracy>,
     opts: &HlrOptions,
+    outline: Option<bool>,
     st: Stretch,
 ) -> HlrPiece {
     let [p0, p1] = st.param;
@@ -755,19 +835,22 @@ fn draw_piece(
         error_bound,
         points,
         points_uv,
+        outline,
+        behind: st.behind,
     }
 }
 
-/// The QI of a segment's stretch `[p0, p1]`, from the first proven sample.
+/// The QI of a segment's stretch `[p0, p1]`, from the first proven sample, and with `behind`,
+/// if it is 0, what lies right behind that sample.
 fn qi_of(
     scene: &Scene,
     s: &Segment,
-    p0: f64,
-    p1: f64,
+    [p0, p1]: [f64; 2],
+    behind: bool,
     opts: &HlrOptions,
     samples: &mut usize,
     refused: &mut usize,
-) -> Result<usize, String> {
+) -> Result<(usize, Option<Behind>), String> {
     if opts.curve.past_deadline() {
         return Err(TIME_LIMIT_REASON.to_string());
     }
@@ -781,8 +864,15 @@ fn qi_of(
             continue;
         };
         *samples += 1;
-        match layers_in_front(scene, &sample, &opts.ray) {
-            Ok(n) => return Ok(n),
+        match layers(scene, &sample, &opts.ray, behind) {
+            Ok(l) => {
+                let b = (behind && l.in_front == 0).then(|| Behind {
+                    patch: s.patch,
+                    uv: sample.uv_enclosure(),
+                    first: l.first_behind().map(|h| h.cloned()),
+                });
+                return Ok((l.in_front, b));
+            }
             Err(e) => {
                 *refused += 1;
                 last = e;

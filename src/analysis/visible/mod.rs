@@ -17,18 +17,26 @@
 //! Cells never made quiet are unresolved, with the reason. The visible region's true boundary
 //! (silhouette, boundary and occlusion curves) lies in the unresolved cells: the loops of the
 //! proven-visible cells and of the not-proven-hidden cells enclose it from inside and outside.
+//!
+//! With [`VisibleOptions::trimming`] that boundary is also drawn, from a certified hidden-line
+//! drawing: each patch's visible silhouette and side pieces, and the occlusion curves of the
+//! visible outline in front of it, lifted onto it ([`TrimCurve`], `proofs/visible-regions.md`,
+//! claim 4), each with a proven distance bound with a tolerance, chained into loops.
 
 mod area;
 mod cells;
 mod injective;
 mod loops;
+mod occlusion;
 mod outline;
 mod report;
+mod trimming;
 
 pub use report::VisibleReport;
+pub use trimming::{chain_loops, MissingOcclusion, TrimCurve, TrimKind, TrimLoop};
 
 use super::facing::{facing, Facing};
-use super::hlr::ADJACENT_ASSUMPTION;
+use super::hlr::{hidden_lines, HlrOptions, ADJACENT_ASSUMPTION};
 use super::ray::{layers_in_front, RayOptions, Sample, Scene};
 use super::silhouette::{silhouette_function, DrawPatch, View};
 use crate::model::{Model, WeldTolerance};
@@ -62,6 +70,12 @@ pub struct VisibleOptions {
     /// the image are not outline ([`super::fold_edges`]). Off: every edge is outline (for
     /// measuring what clusters save).
     pub clusters: bool,
+    /// Find the trimming curves of the visible regions (silhouette, boundary and occlusion
+    /// curves) from a certified hidden-line drawing.
+    pub trimming: bool,
+    /// The tolerance in model units within which the trimming curves are drawn (`None`:
+    /// drawn, not bounded).
+    pub tol: Option<f64>,
 }
 
 impl Default for VisibleOptions {
@@ -75,6 +89,8 @@ impl Default for VisibleOptions {
             area_tolerance: 0.01,
             samples: 6,
             clusters: true,
+            trimming: true,
+            tol: None,
         }
     }
 }
@@ -145,6 +161,11 @@ pub struct PatchRegion {
     pub unresolved: Vec<UnresolvedArea>,
     /// The leaf cells (the certificate of the result).
     pub cells: Vec<Cell>,
+    /// The curves bounding the visible region: its own visible silhouette and sides, and the
+    /// occlusion curves of the visible outline in front of it.
+    pub trimming: Vec<TrimCurve>,
+    /// The trimming curves chained end to end.
+    pub trim_loops: Vec<TrimLoop>,
 }
 
 /// Counts of the work done.
@@ -158,6 +179,14 @@ pub struct VisibleStats {
     pub ray_tests: usize,
     /// Ray tests refused (another point was tried).
     pub refused_ray_tests: usize,
+    /// Trimming curves, and those certified.
+    pub trim_curves: usize,
+    /// See `trim_curves`.
+    pub certified_trim_curves: usize,
+    /// Trimming loops, and those that close.
+    pub trim_loops: usize,
+    /// See `trim_loops`.
+    pub closed_trim_loops: usize,
 }
 
 /// The visible regions of a model in a view.
@@ -171,6 +200,11 @@ pub struct VisibleRegions {
     pub stats: VisibleStats,
     /// What the result assumes without proof.
     pub assumptions: Vec<String>,
+    /// Visible outline pieces whose occlusion curve on the surface behind was not found.
+    pub missing_occlusions: Vec<MissingOcclusion>,
+    /// Pairs of patches proven to intersect: their intersection curve bounds visible regions
+    /// too, and is not among the trimming curves.
+    pub intersecting_patches: Vec<[usize; 2]>,
 }
 
 impl VisibleRegions {
@@ -250,13 +284,48 @@ pub fn visible_regions(
     if let WeldTolerance::Absolute(d) = weld {
         assumptions.push(super::hlr::weld_assumption(d));
     }
+    let mut missing_occlusions = Vec::new();
+    let mut intersecting_patches = Vec::new();
+    if opts.trimming {
+        let hopts = HlrOptions {
+            curve: opts.curve.clone(),
+            ray: opts.ray.clone(),
+            // The lifts magnify the pieces' drawing error (`proofs/visible-regions.md`,
+            // claim 4): the pieces are drawn to a fraction of the tolerance.
+            tol: opts.tol.map(|t| t / OCCLUDER_TOL_DIVISOR),
+            clusters: opts.clusters,
+            behind: true,
+            ..HlrOptions::default()
+        };
+        let h = hidden_lines(model, view, &hopts, weld)?;
+        let t = trimming::trimming_curves(model, &scene, &h, &opts.ray, opts.tol);
+        missing_occlusions = t.missing;
+        intersecting_patches = h.intersecting_patches.clone();
+        for (region, curves) in patches.iter_mut().zip(t.curves) {
+            region.trim_loops = chain_loops(&curves, TRIM_GAP);
+            region.trimming = curves;
+            stats.trim_curves += region.trimming.len();
+            stats.certified_trim_curves += region.trimming.iter().filter(|c| c.certified).count();
+            stats.trim_loops += region.trim_loops.len();
+            stats.closed_trim_loops += region.trim_loops.iter().filter(|l| l.closed).count();
+        }
+    }
     Ok(VisibleRegions {
         patches,
         area_fraction: fraction_bounds(sums),
         stats,
         assumptions,
+        missing_occlusions,
+        intersecting_patches,
     })
 }
+
+/// The hidden-line pieces behind the trimming curves are drawn to the tolerance divided by
+/// this.
+pub const OCCLUDER_TOL_DIVISOR: f64 = 32.0;
+
+/// The largest gap in (u, v) between two trimming curves' ends chained into one loop.
+pub const TRIM_GAP: f64 = 1e-6;
 
 /// Bounds on `V / (V + H + U)` (with the unresolved part `U` anywhere between) from bounds on
 /// the visible, hidden and unresolved parts: `x / (x + y)` grows with `x` and falls with `y`.
@@ -468,6 +537,8 @@ fn patch_region(
             })
             .collect(),
         cells,
+        trimming: Vec::new(),
+        trim_loops: Vec::new(),
     };
     (region, stats, sums)
 }

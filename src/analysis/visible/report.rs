@@ -19,6 +19,12 @@ pub struct VisibleReport {
     pub stats: VisibleStats,
     /// What the result assumes without proof.
     pub assumptions: Vec<String>,
+    /// Visible outline pieces whose occlusion curve was not found (the trimming loops of the
+    /// patch behind them are incomplete).
+    pub missing_occlusions: Vec<MissingOcclusion>,
+    /// Pairs of patches proven to intersect (their intersection curve is not a trimming
+    /// curve).
+    pub intersecting_patches: Vec<[usize; 2]>,
     /// Wall time in milliseconds.
     pub time_ms: f64,
     /// Worker threads.
@@ -49,6 +55,8 @@ impl VisibleReport {
             patches,
             stats: r.stats.clone(),
             assumptions: r.assumptions.clone(),
+            missing_occlusions: r.missing_occlusions.clone(),
+            intersecting_patches: r.intersecting_patches.clone(),
             time_ms,
             threads,
         }
@@ -104,6 +112,15 @@ impl VisibleReport {
         t += &format!(
             "work: {} cells, {} quiet regions, {} ray tests ({} refused)\n",
             s.cells, s.quiet_regions, s.ray_tests, s.refused_ray_tests
+        );
+        t += &format!(
+            "trimming curves: {} ({} certified), chained into {} loops ({} closed); {} outline pieces without an occlusion curve; {} intersecting patch pairs (their intersection curves are not trimming curves)\n",
+            s.trim_curves,
+            s.certified_trim_curves,
+            s.trim_loops,
+            s.closed_trim_loops,
+            self.missing_occlusions.len(),
+            self.intersecting_patches.len()
         );
         for a in &self.assumptions {
             t += &format!("assumed: {a}\n");
