@@ -363,6 +363,16 @@ pub fn side_point(edge: Edge, t: &Rational) -> [Rational; 2] {
     }
 }
 
+/// [`side_point`] in f64.
+pub fn side_point_f64(edge: Edge, t: f64) -> [f64; 2] {
+    match edge {
+        Edge::V0 => [t, 0.0],
+        Edge::V1 => [t, 1.0],
+        Edge::U0 => [0.0, t],
+        Edge::U1 => [1.0, t],
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

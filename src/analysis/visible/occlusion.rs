@@ -22,7 +22,7 @@
 //! without bound: those stretches are reported with their bound, or unproven.
 
 use super::super::accuracy::{derivs, partials_on, SurfaceBounds};
-use super::super::projection::Projection;
+use super::super::projection::{side_point_f64, Projection};
 use super::super::ray::{range_on, Scene};
 use super::super::silhouette::DrawPatch;
 use crate::bernstein::Bernstein;
@@ -247,15 +247,6 @@ fn nearest_side(w: [f64; 2]) -> (Edge, f64) {
         1 => (Edge::U1, w[1]),
         2 => (Edge::V1, w[0]),
         _ => (Edge::U0, w[1]),
-    }
-}
-
-fn side_point_f64(e: Edge, t: f64) -> [f64; 2] {
-    match e {
-        Edge::V0 => [t, 0.0],
-        Edge::V1 => [t, 1.0],
-        Edge::U0 => [0.0, t],
-        Edge::U1 => [1.0, t],
     }
 }
 

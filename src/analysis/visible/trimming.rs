@@ -10,6 +10,7 @@
 //! outline piece. The curves of each patch are then chained into loops by their ends.
 
 use super::super::hlr::{HiddenLines, HlrPiece, LineKind};
+use super::super::projection::side_point_f64;
 use super::super::ray::{layers_in_front, RayOptions, Sample, Scene};
 use super::super::silhouette::DrawPatch;
 use super::occlusion::{Anchor, LiftPatch, Lifting};
@@ -106,15 +107,6 @@ fn side_param(edge: Edge, uv: (f64, f64)) -> f64 {
     }
 }
 
-fn side_point(edge: Edge, t: f64) -> [f64; 2] {
-    match edge {
-        Edge::V0 => [t, 0.0],
-        Edge::V1 => [t, 1.0],
-        Edge::U0 => [0.0, t],
-        Edge::U1 => [1.0, t],
-    }
-}
-
 /// The trimming curves a visible side piece gives its users: every user where the surface
 /// continues across it; otherwise each user whose points next to the piece are proven
 /// visible (a ray test at a point `2⁻¹²` inside, at the piece's middle).
@@ -155,7 +147,7 @@ fn side_curves(
         let uv: Vec<[f64; 2]> = piece
             .points_uv
             .iter()
-            .map(|&(_, u, v)| side_point(e, map(side_param(edge, (u, v)))))
+            .map(|&(_, u, v)| side_point_f64(e, map(side_param(edge, (u, v)))))
             .collect();
         let xyz = if p == piece.patch {
             piece.points.clone()
@@ -337,7 +329,7 @@ fn poles(draw: &DrawPatch) -> Vec<(Edge, [f64; 3])> {
             let pts: Vec<[f64; 3]> = [0.0, 0.25, 0.5, 0.75, 1.0]
                 .iter()
                 .map(|&t| {
-                    let w = side_point(e, t);
+                    let w = side_point_f64(e, t);
                     draw.eval(w[0], w[1])
                 })
                 .collect();
@@ -356,7 +348,7 @@ fn poles(draw: &DrawPatch) -> Vec<(Edge, [f64; 3])> {
 fn join_at_poles(draw: &DrawPatch, p: usize, curves: &mut Vec<TrimCurve>) {
     for (edge, at) in poles(draw) {
         let on_side = |w: &[f64; 2]| {
-            let s = side_point(edge, side_param(edge, (w[0], w[1])));
+            let s = side_point_f64(edge, side_param(edge, (w[0], w[1])));
             (s[0] - w[0]).abs().max((s[1] - w[1]).abs()) <= super::TRIM_GAP
         };
         let ends: Vec<[f64; 2]> = curves
