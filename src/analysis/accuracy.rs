@@ -170,6 +170,16 @@ impl SurfaceBounds {
 
     /// Bounds over a box of |∂S/∂m| and of the norms of S_mm, S_mo, S_oo.
     pub(crate) fn bounds(&self, lo: [f64; 2], hi: [f64; 2], m: usize) -> Option<[f64; 4]> {
+        Some(self.bounds_both(lo, hi, m)?.0)
+    }
+
+    /// [`SurfaceBounds::bounds`] for `m`, and the bound on |∂S/∂o| (from the same ranges).
+    pub(crate) fn bounds_both(
+        &self,
+        lo: [f64; 2],
+        hi: [f64; 2],
+        m: usize,
+    ) -> Option<([f64; 4], f64)> {
         let o = 1 - m;
         let r = |k: usize, i: usize| PatchAccuracy::range(&self.h[k][i], lo, hi);
         let w: [Interval; 6] = std::array::from_fn(|i| r(3, i));
@@ -177,6 +187,7 @@ impl SurfaceBounds {
             return None;
         }
         let mut s_m = [Interval::point(0.0); 3];
+        let mut s_o = s_m;
         let mut s_mm = s_m;
         let mut s_mo = s_m;
         let mut s_oo = s_m;
@@ -193,11 +204,15 @@ impl SurfaceBounds {
                 div(num, w[0])
             };
             s_m[k] = sm;
+            s_o[k] = so;
             s_mm[k] = sxy(m, m, sm, sm)?;
             s_mo[k] = sxy(m, o, sm, so)?;
             s_oo[k] = sxy(o, o, so, so)?;
         }
-        Some([norm(&s_m), norm(&s_mm), norm(&s_mo), norm(&s_oo)])
+        Some((
+            [norm(&s_m), norm(&s_mm), norm(&s_mo), norm(&s_oo)],
+            norm(&s_o),
+        ))
     }
 }
 

@@ -33,6 +33,17 @@ use crate::surface::{Edge, RationalPatch};
 type IPoly = Bernstein<Interval>;
 type FPoly = Bernstein<f64>;
 
+/// The image of a chord's tube: the image segment from `a` to `a + d` (the image of the drawn
+/// chord: a projection maps segments to segments) grown by `r` per image coordinate (the drawn
+/// chord's error `e` times a bound on the image map's gradient), and its bounding box.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Tube {
+    a: [Interval; 2],
+    d: [Interval; 2],
+    r: [f64; 2],
+    hull: [Interval; 2],
+}
+
 /// One patch's polynomials for lifting image points onto it.
 pub(crate) struct LiftPatch {
     /// Image numerators and denominator `x, y, q` (outward intervals) with their first and
@@ -96,7 +107,8 @@ impl LiftPatch {
     /// Krawczyk's test with the image point as a parameter: whether every image point in
     /// `y` has exactly one preimage in the parameter box `[lo, hi]` (which may reach past the
     /// square: the polynomials are defined everywhere). `proofs/visible-regions.md`, claim 4.
-    pub(crate) fn unique_preimages(&self, y: [Interval; 2], lo: [f64; 2], hi: [f64; 2]) -> bool {
+    pub(crate) fn unique_preimages(&self, t: &Tube, lo: [f64; 2], hi: [f64; 2]) -> bool {
+        let y = t.hull;
         let m = [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])];
         let yc = [0.5 * (y[0].lo() + y[0].hi()), 0.5 * (y[1].lo() + y[1].hi())];
         // C: the inverse of the point Jacobian at the centre (any matrix keeps the test sound).
@@ -110,12 +122,26 @@ impl LiftPatch {
         let Some(c) = inverse(&jm) else {
             return false;
         };
-        let g_m = self.residual(m, y);
+        // C G(m; y) for y = a + μ d + δ (μ ∈ [0, 1], |δ_k| ≤ r_k), term by term, so that a
+        // chord that is diagonal in the image does not count as its whole bounding box.
+        let g_a = self.residual(m, t.a);
+        let q_m = self.jets[2][0].eval(&m.map(Interval::point));
         let jw = self.jacobian_on(y, lo, hi);
         let dw = [0, 1].map(|a| Interval::new(lo[a] - m[a], hi[a] - m[a]));
         (0..2).all(|r| {
             let ci = [Interval::point(c[r][0]), Interval::point(c[r][1])];
-            let mut k = Interval::point(m[r]).sub(&ci[0].mul(&g_m[0]).add(&ci[1].mul(&g_m[1])));
+            let along = q_m.mul(&ci[0].mul(&t.d[0]).add(&ci[1].mul(&t.d[1])));
+            let along = Interval::new(along.lo().min(0.0), along.hi().max(0.0));
+            let spread = q_m
+                .mul(&Interval::point(c[r][0].abs()).mul(&Interval::point(t.r[0])))
+                .add(&q_m.mul(&Interval::point(c[r][1].abs()).mul(&Interval::point(t.r[1]))));
+            let m_spread = spread.hi().abs().max(spread.lo().abs());
+            let cg = ci[0]
+                .mul(&g_a[0])
+                .add(&ci[1].mul(&g_a[1]))
+                .sub(&along)
+                .add(&Interval::new(-m_spread, m_spread));
+            let mut k = Interval::point(m[r]).sub(&cg);
             for (a, d) in dw.iter().enumerate() {
                 let cj = ci[0].mul(&jw[0][a]).add(&ci[1].mul(&jw[1][a]));
                 let e = Interval::point(if r == a { 1.0 } else { 0.0 }).sub(&cj);
@@ -314,7 +340,8 @@ impl Lifting<'_> {
     }
 
     /// The image enclosure of the box around points grown by `e`.
-    fn tube(&self, pts: &[[f64; 3]], e: f64) -> Option<[Interval; 2]> {
+    /// `pts` are collinear points of one drawn chord (its first and last span it).
+    fn tube(&self, pts: &[[f64; 3]], e: f64) -> Option<Tube> {
         let mut lo = [f64::INFINITY; 3];
         let mut hi = [f64::NEG_INFINITY; 3];
         for p in pts {
@@ -325,7 +352,21 @@ impl Lifting<'_> {
         }
         let lo = lo.map(|x| Interval::point(x).sub(&Interval::point(e)).lo());
         let hi = hi.map(|x| Interval::point(x).add(&Interval::point(e)).hi());
-        self.projection().image_of_box(lo, hi)
+        let proj = self.projection();
+        let (first, last) = (pts.first()?, pts.last()?);
+        let a = proj.image_of_box(*first, *first)?;
+        let b = proj.image_of_box(*last, *last)?;
+        let grad = proj.image_gradient_bound(lo, hi)?;
+        let r = grad.map(|g| Interval::point(g).mul(&Interval::point(e)).hi());
+        let d = [0, 1].map(|k| b[k].sub(&a[k]));
+        let hull = [0, 1].map(|k| {
+            let h = a[k].hull(&b[k]);
+            Interval::new(
+                Interval::point(h.lo()).sub(&Interval::point(r[k])).lo(),
+                Interval::point(h.hi()).add(&Interval::point(r[k])).hi(),
+            )
+        });
+        Some(Tube { a, d, r, hull })
     }
 
     /// Follows the lift of a polyline from its first point (lifted to `w` on `patch`),
@@ -553,7 +594,8 @@ impl Lifting<'_> {
     /// A box around `w` holding exactly one preimage of every image point of the tube
     /// around `x` (on patch `p`), or `None`.
     fn vertex_box(&self, p: usize, x: [f64; 3], w: [f64; 2], e: f64) -> Option<PBox> {
-        let y = self.tube(&[x], e)?;
+        let t = self.tube(&[x], e)?;
+        let y = t.hull;
         let lp = &self.patches[p];
         let half = y[0].width().max(y[1].width()) * 0.5;
         // The spread of the preimages: about |J⁻¹| times the tube's half-width.
@@ -573,7 +615,7 @@ impl Lifting<'_> {
         let r0 = norm * half + 1e-13 * (1.0 + w[0].abs().max(w[1].abs()));
         [2.0, 4.0, 16.0, 64.0].into_iter().find_map(|k| {
             let b = w.map(|c| [c - k * r0, c + k * r0]);
-            lp.unique_preimages(y, [b[0][0], b[1][0]], [b[0][1], b[1][1]])
+            lp.unique_preimages(&t, [b[0][0], b[1][0]], [b[0][1], b[1][1]])
                 .then_some(b)
         })
     }
@@ -581,14 +623,14 @@ impl Lifting<'_> {
     /// A box holding the vertex boxes of both ends and exactly one preimage of every image
     /// point of the chord's tube, or `None`.
     fn chord_box(&self, p: usize, xs: &[[f64; 3]], ends: &[PBox], e: f64) -> Option<PBox> {
-        let y = self.tube(xs, e)?;
+        let t = self.tube(xs, e)?;
         let h = ends.iter().skip(1).fold(ends[0], |acc, b| hull(&acc, b));
         // An axis-aligned image box maps to a parallelogram in parameters: a box that holds
         // it may have to reach well past the hull of the ends.
         [0.01, 0.1, 0.5, 1.0].into_iter().find_map(|g| {
             let b = grown(&h, g, 1e-13);
             self.patches[p]
-                .unique_preimages(y, [b[0][0], b[1][0]], [b[0][1], b[1][1]])
+                .unique_preimages(&t, [b[0][0], b[1][0]], [b[0][1], b[1][1]])
                 .then_some(b)
         })
     }
@@ -617,7 +659,7 @@ impl Lifting<'_> {
         let (lo, hi) = ([w[0][0], w[1][0]], [w[0][1], w[1][1]]);
         let pi = Interval::point;
         let mag = |x: Interval| x.lo().abs().max(x.hi().abs());
-        let y = self.tube(&[a.x, b.x], e)?;
+        let y = self.tube(&[a.x, b.x], e)?.hull;
         // The inverse of the Jacobian over the box, by its adjugate.
         let j = lp.jacobian_on(y, lo, hi);
         let det = j[0][0].mul(&j[1][1]).sub(&j[0][1].mul(&j[1][0]));
@@ -677,8 +719,7 @@ impl Lifting<'_> {
             .map(|w| (clamp(*w)[0] - w[0]).abs().max((clamp(*w)[1] - w[1]).abs()))
             .fold(0.0, f64::max);
         let delta = [0, 1].map(|k| pi(d1[k]).add(&pi(d2[k])).add(&pi(clamp_shift)).hi());
-        let [s_u, s_uu, s_uv, s_vv] = lp.surface.bounds(lo, hi, 0)?;
-        let [s_v, ..] = lp.surface.bounds(lo, hi, 1)?;
+        let ([s_u, s_uu, s_uv, s_vv], s_v) = lp.surface.bounds_both(lo, hi, 0)?;
         let first = pi(s_u).mul(&pi(delta[0])).add(&pi(s_v).mul(&pi(delta[1])));
         let (ca, cb) = (clamp(a.w), clamp(b.w));
         let (du, dv) = (
@@ -821,9 +862,9 @@ impl Lifting<'_> {
         let (free_f, free_t) = (side_axes(edge_from).2, side_axes(edge_to).2);
         wf[free_f] = r;
         wt[free_t] = map(r);
-        let y = self.tube(&win.x, e)?;
+        let t = self.tube(&win.x, e)?;
         let unique = |p: usize, b: &PBox| {
-            self.patches[p].unique_preimages(y, [b[0][0], b[1][0]], [b[0][1], b[1][1]])
+            self.patches[p].unique_preimages(&t, [b[0][0], b[1][0]], [b[0][1], b[1][1]])
         };
         if !unique(win.from, &wf) || !unique(win.to, &wt) {
             return None;
@@ -843,8 +884,7 @@ impl Lifting<'_> {
             let d_near = self.chord_bound(p, b, vertex(near[0], ws), vertex(near[1], ws), e)?[0];
             let d_far = self.chord_bound(p, b, vertex(far[0], ws), vertex(far[1], ws), e)?[0];
             let (lo, hi) = ([b[0][0], b[1][0]], [b[0][1], b[1][1]]);
-            let s_u = self.patches[p].surface.bounds(lo, hi, 0)?[0];
-            let s_v = self.patches[p].surface.bounds(lo, hi, 1)?[0];
+            let ([s_u, ..], s_v) = self.patches[p].surface.bounds_both(lo, hi, 0)?;
             let (fa, fb) = (ws[far[0]], ws[far[1]]);
             // (The drawn end is x*'s lift clamped into the square: a shift of at most 1e-12.)
             let reach = Interval::point(s_u)
