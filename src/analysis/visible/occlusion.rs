@@ -382,7 +382,8 @@ impl Lifting<'_> {
             }],
             windows: Vec::new(),
         };
-        for &xb in &points[1..] {
+        for (i, &xb) in points.iter().enumerate().skip(1) {
+            let last = i + 1 == points.len();
             loop {
                 let run = walk.runs.last_mut().expect("a run");
                 let a = *run.vertices.last().expect("a vertex");
@@ -412,6 +413,12 @@ impl Lifting<'_> {
                 let (edge, t) = nearest_side(w_lo);
                 let twins = self.scene.twins(p, edge);
                 let [(p2, e2, rev)] = twins[..] else {
+                    // The piece's own end, on an outline side of the patch behind (where the
+                    // piece is cut): its lift is drawn clamped into the square.
+                    if last {
+                        run.vertices.push(Vertex { x: xb, w: wb });
+                        break;
+                    }
                     run.reason = Some(format!(
                         "the lift leaves patch {p} across its side {edge:?}, not an edge shared by exactly two patches"
                     ));
