@@ -1184,3 +1184,111 @@ impl Lifting<'_> {
         Ok(out)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::silhouette::View;
+    use crate::model::{Format, Model, WeldTolerance};
+    use crate::number::Rational;
+    use crate::testing::shapes;
+
+    /// The parametric Krawczyk test on a chord's tube, taken term by term (the segment plus
+    /// its spread, not its bounding box): every image point of the tube that Newton's method
+    /// lifts from anywhere in a proven box lands inside it, at one point; and a box that misses
+    /// a lift of the tube is refused (dropping the term along the segment makes this fail).
+    #[test]
+    fn every_point_of_a_proven_tube_lifts_into_its_box_once() {
+        let patches = shapes::sphere(&Rational::from(1));
+        let model = Model::from_patches(Format::Json, patches);
+        let view = View::Direction([1, 2, 3].map(Rational::from));
+        let scene = Scene::new(&model, &view, WeldTolerance::Exact).unwrap();
+        let lifts: Vec<LiftPatch> = (0..model.patches.len())
+            .map(|j| LiftPatch::new(&scene, &model.patches[j].surface, j))
+            .collect();
+        let draws: Vec<DrawPatch> = model
+            .patches
+            .iter()
+            .map(|p| DrawPatch::new(&p.surface))
+            .collect();
+        let lifting = Lifting {
+            scene: &scene,
+            patches: &lifts,
+            draws: &draws,
+        };
+        let mut seed = 12345u64;
+        let mut next = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((seed >> 11) as f64) / ((1u64 << 53) as f64)
+        };
+        let (mut proven, mut checked, mut refused) = (0, 0, 0);
+        for _ in 0..40 {
+            let p = (next() * model.patches.len() as f64) as usize % model.patches.len();
+            let wa = [0.2 + 0.6 * next(), 0.2 + 0.6 * next()];
+            let wb = [wa[0] + 0.05 * (next() - 0.5), wa[1] + 0.05 * (next() - 0.5)];
+            let (xa, xb) = (draws[p].eval(wa[0], wa[1]), draws[p].eval(wb[0], wb[1]));
+            let e = 1e-5;
+            let (a, b) = (Vertex { x: xa, w: wa }, Vertex { x: xb, w: wb });
+            let (Some(va), Some(vb)) = (
+                lifting.vertex_box(p, xa, wa, e),
+                lifting.vertex_box(p, xb, wb, e),
+            ) else {
+                continue;
+            };
+            let Some(w) = lifting.chord_box(p, &[a.x, b.x], &[va, vb], e) else {
+                continue;
+            };
+            proven += 1;
+            let t = lifting.tube(&[xa, xb], e).unwrap();
+            // Soundness: a box that misses a lift of the tube (the first end's box, when the
+            // second end lifts outside it) must not pass the test.
+            let outside = (0..2).any(|k| wb[k] < va[k][0] || wb[k] > va[k][1]);
+            if outside {
+                let accepted =
+                    lifts[p].unique_preimages(&t, [va[0][0], va[1][0]], [va[0][1], va[1][1]]);
+                assert!(
+                    !accepted,
+                    "patch {p}: {va:?} accepted for the tube to {wb:?}"
+                );
+                refused += 1;
+            }
+            let mid = |i: Interval| 0.5 * (i.lo() + i.hi());
+            for _ in 0..50 {
+                // A point of the tube: on the segment, moved by at most r per coordinate.
+                let mu = next();
+                let y = [0, 1].map(|k| {
+                    mid(t.a[k]) + mu * mid(t.d[k]) + (2.0 * next() - 1.0) * t.r[k] * 0.999
+                });
+                let starts = [
+                    [w[0][0], w[1][0]],
+                    [w[0][1], w[1][1]],
+                    [0.5 * (w[0][0] + w[0][1]), 0.5 * (w[1][0] + w[1][1])],
+                ];
+                let roots: Vec<[f64; 2]> = starts
+                    .iter()
+                    .filter_map(|s| lifts[p].newton(y, *s))
+                    .collect();
+                assert!(!roots.is_empty(), "no lift of {y:?} in {w:?}");
+                for r in &roots {
+                    checked += 1;
+                    let slack = 1e-12;
+                    assert!(
+                        (0..2).all(|k| w[k][0] - slack <= r[k] && r[k] <= w[k][1] + slack),
+                        "patch {p}: the lift {r:?} of {y:?} is outside the proven box {w:?}"
+                    );
+                    let d = (r[0] - roots[0][0]).abs().max((r[1] - roots[0][1]).abs());
+                    assert!(
+                        d < 1e-9,
+                        "two lifts in one proven box: {r:?}, {:?}",
+                        roots[0]
+                    );
+                }
+            }
+        }
+        assert!(proven >= 20, "{proven} chords proven");
+        assert!(refused >= 20, "{refused} boxes refused");
+        assert!(checked >= 1000, "{checked}");
+    }
+}
