@@ -20,20 +20,26 @@ fn pair(v: &Value) -> [f64; 2] {
     [v[0].as_f64().unwrap(), v[1].as_f64().unwrap()]
 }
 
-#[test]
-fn two_squares_json_contract_and_closed_form() {
+/// `limn visible` on the two squares along `(1, 2, −40)` as JSON, with more arguments.
+fn squares_json(more: &[&str]) -> Value {
     let model = two_squares();
-    let (code, out, err) = limn(&[
+    let mut args = vec![
         "visible",
         model.to_str().unwrap(),
         "--dir",
         "1,2,-40",
         "--format",
         "json",
-        "--cells",
-    ]);
+    ];
+    args.extend_from_slice(more);
+    let (code, out, err) = limn(&args);
     assert_eq!(code, Some(0), "{err}");
-    let r: Value = serde_json::from_str(&out).unwrap();
+    serde_json::from_str(&out).unwrap()
+}
+
+#[test]
+fn two_squares_json_contract_and_closed_form() {
+    let r = squares_json(&["--cells"]);
     assert_eq!(r["view"]["dir"], serde_json::json!([1.0, 2.0, -40.0]));
     assert!(r["stats"]["cells"].as_u64().unwrap() > 0);
     assert!(!r["assumptions"].as_array().unwrap().is_empty());
@@ -79,15 +85,7 @@ fn two_squares_json_contract_and_closed_form() {
         );
     }
     // Without --cells the cells are left out.
-    let (_, out, _) = limn(&[
-        "visible",
-        model.to_str().unwrap(),
-        "--dir",
-        "1,2,-40",
-        "--format",
-        "json",
-    ]);
-    let r: Value = serde_json::from_str(&out).unwrap();
+    let r = squares_json(&[]);
     assert!(r["patches"][0]["cells"].as_array().unwrap().is_empty());
 }
 
@@ -97,19 +95,7 @@ fn two_squares_json_contract_and_closed_form() {
 /// its parameters `u = x/2`, `v = y/2`.
 #[test]
 fn trimming_curves_of_the_two_squares() {
-    let model = two_squares();
-    let (code, out, err) = limn(&[
-        "visible",
-        model.to_str().unwrap(),
-        "--dir",
-        "1,2,-40",
-        "--format",
-        "json",
-        "--tol",
-        "1e-6",
-    ]);
-    assert_eq!(code, Some(0), "{err}");
-    let r: Value = serde_json::from_str(&out).unwrap();
+    let r = squares_json(&["--tol", "1e-6"]);
     let lower = &r["patches"][0];
     let curves = lower["trimming"].as_array().unwrap();
     let (u0, v0) = ((1.0 + 1.0 / 40.0) / 2.0, (1.0 + 2.0 / 40.0) / 2.0);

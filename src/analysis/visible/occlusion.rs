@@ -26,9 +26,11 @@ use super::super::projection::{side_point_f64, Projection};
 use super::super::ray::{range_on, Scene};
 use super::super::silhouette::DrawPatch;
 use crate::bernstein::Bernstein;
+use crate::model::Model;
 use crate::number::{Interval, Number, Precision};
 use crate::solver::system::inverse;
 use crate::surface::{Edge, RationalPatch};
+use rayon::prelude::*;
 
 type IPoly = Bernstein<Interval>;
 type FPoly = Bernstein<f64>;
@@ -237,11 +239,30 @@ struct Walk {
     windows: Vec<Window>,
 }
 
-/// What lifting needs of the scene.
+/// What lifting needs of the scene: per patch its lifting polynomials and its drawing
+/// evaluator.
 pub(crate) struct Lifting<'a> {
     pub scene: &'a Scene,
-    pub patches: &'a [LiftPatch],
-    pub draws: &'a [DrawPatch],
+    pub patches: Vec<LiftPatch>,
+    pub draws: Vec<DrawPatch>,
+}
+
+impl<'a> Lifting<'a> {
+    /// Converts (once) every patch of the model.
+    pub(crate) fn new(model: &Model, scene: &'a Scene) -> Lifting<'a> {
+        Lifting {
+            scene,
+            patches: (0..model.patches.len())
+                .into_par_iter()
+                .map(|j| LiftPatch::new(scene, &model.patches[j].surface, j))
+                .collect(),
+            draws: model
+                .patches
+                .iter()
+                .map(|p| DrawPatch::new(&p.surface))
+                .collect(),
+        }
+    }
 }
 
 const INSIDE_SLACK: f64 = 1e-12;
@@ -1189,7 +1210,7 @@ impl Lifting<'_> {
 mod tests {
     use super::*;
     use crate::analysis::silhouette::View;
-    use crate::model::{Format, Model, WeldTolerance};
+    use crate::model::{Format, WeldTolerance};
     use crate::number::Rational;
     use crate::testing::shapes;
 
@@ -1203,19 +1224,8 @@ mod tests {
         let model = Model::from_patches(Format::Json, patches);
         let view = View::Direction([1, 2, 3].map(Rational::from));
         let scene = Scene::new(&model, &view, WeldTolerance::Exact).unwrap();
-        let lifts: Vec<LiftPatch> = (0..model.patches.len())
-            .map(|j| LiftPatch::new(&scene, &model.patches[j].surface, j))
-            .collect();
-        let draws: Vec<DrawPatch> = model
-            .patches
-            .iter()
-            .map(|p| DrawPatch::new(&p.surface))
-            .collect();
-        let lifting = Lifting {
-            scene: &scene,
-            patches: &lifts,
-            draws: &draws,
-        };
+        let lifting = Lifting::new(&model, &scene);
+        let (lifts, draws) = (&lifting.patches, &lifting.draws);
         let mut seed = 12345u64;
         let mut next = || {
             seed = seed

@@ -13,7 +13,7 @@ use super::super::hlr::{HiddenLines, HlrPiece, LineKind};
 use super::super::projection::side_point_f64;
 use super::super::ray::{layers_in_front, RayOptions, Sample, Scene};
 use super::super::silhouette::DrawPatch;
-use super::occlusion::{Anchor, LiftPatch, Lifting};
+use super::occlusion::{Anchor, Lifting};
 use crate::model::Model;
 use crate::number::Rational;
 use crate::surface::Edge;
@@ -196,20 +196,8 @@ pub(crate) fn trimming_curves(
     tol: Option<f64>,
 ) -> Trimming {
     let n = model.patches.len();
-    let lifts: Vec<LiftPatch> = (0..n)
-        .into_par_iter()
-        .map(|j| LiftPatch::new(scene, &model.patches[j].surface, j))
-        .collect();
-    let draws: Vec<DrawPatch> = model
-        .patches
-        .iter()
-        .map(|p| DrawPatch::new(&p.surface))
-        .collect();
-    let lifting = Lifting {
-        scene,
-        patches: &lifts,
-        draws: &draws,
-    };
+    let lifting = Lifting::new(model, scene);
+    let (lifts, draws) = (&lifting.patches, &lifting.draws);
     let found: Vec<PieceCurves> = hlr
         .pieces
         .par_iter()
@@ -228,7 +216,7 @@ pub(crate) fn trimming_curves(
             let mut curves = Vec::new();
             match (piece.kind, piece.edge) {
                 (LineKind::Boundary, Some(edge)) => {
-                    curves.extend(side_curves(scene, &draws, piece, edge, ray));
+                    curves.extend(side_curves(scene, draws, piece, edge, ray));
                 }
                 _ => curves.push((
                     piece.patch,
