@@ -176,3 +176,38 @@ fn the_teapots_first_twelve_patches_are_solved_and_its_rim_has_one_branch_per_pa
         assert_eq!(p.branches.len(), 1);
     }
 }
+
+#[test]
+fn the_handles_side_line_ends_at_an_exact_singular_point() {
+    // Along the handle's side line v = 1/2 (patches 12, 13) the tangent plane is the constant
+    // plane y = ±0.225, so the line (u, 1/2, s = 1/2) lies on the flecnodal curve; at u = 0 a
+    // second branch leaves it tangentially. The point is found exactly, its branches are not
+    // resolved (the tangent cone is a double line), and only the box that holds it says so.
+    let teapot = limn::testing::teapot();
+    for index in [12, 13] {
+        let f = patch_flecnodal(
+            &teapot.patches[index].surface,
+            index,
+            &FlecnodalOptions::with_tolerance(None),
+        );
+        let line: Vec<_> = f
+            .singular_points
+            .iter()
+            .filter(|s| s.exact == ["0", "1/2", "1/2"])
+            .collect();
+        assert_eq!(line.len(), 1, "patch {index}: {:#?}", f.singular_points);
+        let sp = line[0];
+        assert_eq!(sp.chart, limn::analysis::flecnodal::Chart::AlongU);
+        assert_eq!(sp.branches, None);
+        assert!((sp.xyz[1].abs() - 0.225).abs() < 1e-12, "{:?}", sp.xyz);
+        let holding: Vec<_> = f
+            .unresolved
+            .iter()
+            .filter(|u| u.reason.contains("exact singular point"))
+            .collect();
+        assert!(!holding.is_empty());
+        for u in holding {
+            assert!(u.cell[0][0] == 0.0 && u.cell[1][0] <= 0.5 && 0.5 <= u.cell[1][1]);
+        }
+    }
+}

@@ -24,8 +24,8 @@ use crate::solver::chain::chain;
 use crate::solver::curve2::TIME_LIMIT_REASON;
 use crate::solver::curve_n::ArcAccept;
 use crate::solver::curve_n::{
-    solve_space_curve_excluding, unwarp, unwarp_interval, warp, BoxVerdict, SpaceCurve,
-    SpaceCurveOptions,
+    solve_space_curve_excluding, unwarp, unwarp_exact, unwarp_interval, warp, BoxVerdict,
+    SpaceCurve, SpaceCurveOptions,
 };
 use crate::surface::RationalPatch;
 use rayon::prelude::*;
@@ -131,6 +131,21 @@ pub struct BitangentUnresolved {
     pub reason: String,
 }
 
+/// An exact singular point of a bitangent curve (`proofs/space-curves.md` §6): the system and
+/// its Jacobian's rank checked in exact arithmetic.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct BitangentSingular {
+    /// The patches.
+    pub patches: [usize; 2],
+    /// Its exact `(u, v, s, t)`, `"a/b"`.
+    pub exact: Vec<String>,
+    /// The two surface points.
+    pub at: [[f64; 3]; 2],
+    /// The number of branches of the curve from it, when the star test decided them; `None`:
+    /// not resolved (the boxes around it are unresolved).
+    pub branches: Option<usize>,
+}
+
 /// The bitangents of one pair of patches.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct PairBitangents {
@@ -140,6 +155,8 @@ pub struct PairBitangents {
     pub branches: Vec<BitangentBranch>,
     /// What was not decided.
     pub unresolved: Vec<BitangentUnresolved>,
+    /// The exact singular points found, with their branches where decided.
+    pub singular_points: Vec<BitangentSingular>,
     /// Boxes examined.
     pub boxes: usize,
     /// Boxes recomputed exactly.
@@ -310,6 +327,7 @@ pub fn pair_bitangents(
         patches: [i, j],
         branches: Vec::new(),
         unresolved: Vec::new(),
+        singular_points: Vec::new(),
         boxes: 0,
         escalations: 0,
         divided_sides: Vec::new(),
@@ -399,6 +417,28 @@ pub fn pair_bitangents(
         BoxVerdict::Solve
     };
     let curve = solve_space_curve_excluding(&eqs, &[], &verdict, &opts);
+    out.singular_points = curve
+        .singular_points
+        .iter()
+        .map(|sp| {
+            let x: Vec<Rational> = sp
+                .values
+                .iter()
+                .zip(&lambdas)
+                .map(|(t, l)| unwarp_exact(t, l))
+                .collect();
+            let f: Vec<f64> = x.iter().map(Rational::to_f64).collect();
+            BitangentSingular {
+                patches: [i, j],
+                exact: x.iter().map(ToString::to_string).collect(),
+                at: [
+                    sides[0].eval.eval(f[0], f[1])[0],
+                    sides[1].eval.eval(f[2], f[3])[0],
+                ],
+                branches: sp.branches,
+            }
+        })
+        .collect();
     out.boxes = curve.boxes;
     out.escalations = curve.escalations;
     out.unresolved = curve
@@ -443,7 +483,7 @@ fn mirror_pairs(curve: &SpaceCurve, jets: &DiagonalTest) -> Vec<(usize, usize)> 
     let swap = [2, 3, 0, 1];
     let mut pairs = Vec::new();
     for (x, c) in curve.crossings.iter().enumerate() {
-        if degree[x] != 1 || c.on_boundary {
+        if degree[x] != 1 || c.on_boundary || c.singular.is_some() {
             continue;
         }
         let mirrored: Vec<[f64; 2]> = (0..4).map(|k| c.enclosure[swap[k]]).collect();
@@ -487,7 +527,9 @@ fn branches(
     };
     let mut edges: Vec<(usize, usize)> = curve.arcs.iter().map(|a| (a.from, a.to)).collect();
     edges.extend(&mirrors);
-    let boundary = |v: usize| curve.crossings[v].on_boundary;
+    // A side of the domain, or a singular point whose branches are proven, ends a branch.
+    let boundary =
+        |v: usize| curve.crossings[v].on_boundary || curve.crossings[v].singular.is_some();
     let point = |v: usize, flipped: bool| -> BitangentPoint {
         let t = curve.crossings[v].point();
         let x: Vec<f64> = (0..4).map(|k| unwarp(t[k], lambda(same, k))).collect();

@@ -1,7 +1,7 @@
 //! The report of `limn curves --kind bitangent`: JSON (field names are a public contract, see
 //! README), text, SVG (projected along a view direction) and OBJ polylines.
 
-use super::bitangent_curves::{BitangentCurves, BitangentUnresolved};
+use super::bitangent_curves::{BitangentCurves, BitangentSingular, BitangentUnresolved};
 use super::render::{
     curves_svg, obj_polyline, reason_lines, verdict_lines, Work, INCOMPLETE_STYLE,
 };
@@ -72,6 +72,8 @@ pub struct BitangentReport {
     pub curves: Vec<BitangentCurve>,
     /// The boxes of `(u, v, s, t)` not decided.
     pub unresolved: Vec<BitangentUnresolved>,
+    /// Exact singular points of the curves, with their branches where decided.
+    pub singular_points: Vec<BitangentSingular>,
     /// Work counts.
     pub stats: BitangentStats,
 }
@@ -106,6 +108,11 @@ impl BitangentReport {
             .iter()
             .flat_map(|p| p.unresolved.iter().cloned())
             .collect();
+        let singular_points: Vec<BitangentSingular> = r
+            .pairs
+            .iter()
+            .flat_map(|p| p.singular_points.iter().cloned())
+            .collect();
         let error_bound = tolerance.and_then(|_| {
             r.pairs
                 .iter()
@@ -136,6 +143,7 @@ impl BitangentReport {
             },
             curves,
             unresolved,
+            singular_points,
         }
     }
 
@@ -167,6 +175,18 @@ impl BitangentReport {
             }),
             "pairs",
         );
+        for p in &self.singular_points {
+            out += &format!(
+                "  pair {}-{}: singular point at (u, v, s, t) = ({}) exactly, {}\n",
+                p.patches[0],
+                p.patches[1],
+                p.exact.join(", "),
+                match p.branches {
+                    Some(b) => format!("{b} branches from it (proven)"),
+                    None => "its branches not resolved".to_string(),
+                }
+            );
+        }
         out += &s.work.line();
         out
     }

@@ -20,8 +20,8 @@ use crate::number::{Interval, Number, Rational};
 use crate::solver::chain::chain;
 use crate::solver::curve2::TIME_LIMIT_REASON;
 use crate::solver::curve_n::{
-    solve_space_curve_where, unwarp, unwarp_interval, warp, ArcAccept, SpaceCrossing, SpaceCurve,
-    SpaceCurveOptions,
+    solve_space_curve_where, unwarp, unwarp_exact, unwarp_interval, warp, ArcAccept, SpaceCrossing,
+    SpaceCurve, SpaceCurveOptions,
 };
 use crate::surface::RationalPatch;
 use rayon::prelude::*;
@@ -115,6 +115,25 @@ pub struct FlecnodalUnresolved {
     pub reason: String,
 }
 
+/// An exact singular point of the flecnodal curve (`proofs/space-curves.md` §6): the system
+/// and its Jacobian's rank checked in exact arithmetic.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct FlecnodalSingular {
+    /// The patch.
+    pub patch: usize,
+    /// The direction chart.
+    pub chart: Chart,
+    /// Its exact `(u, v, s)`, `"a/b"`.
+    pub exact: Vec<String>,
+    /// Its `(u, v)`.
+    pub uv: [f64; 2],
+    /// The point on the surface.
+    pub xyz: [f64; 3],
+    /// The number of branches of the curve from it, when the star test decided them; `None`:
+    /// not resolved (the boxes around it are unresolved).
+    pub branches: Option<usize>,
+}
+
 /// The flecnodal curves of one patch.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct PatchFlecnodal {
@@ -126,6 +145,8 @@ pub struct PatchFlecnodal {
     pub branches: Vec<FlecnodalBranch>,
     /// What was not decided.
     pub unresolved: Vec<FlecnodalUnresolved>,
+    /// The exact singular points found, with their branches where decided.
+    pub singular_points: Vec<FlecnodalSingular>,
     /// Boxes examined, both charts.
     pub boxes: usize,
     /// Boxes recomputed exactly.
@@ -242,6 +263,7 @@ pub fn patch_flecnodal(
         degenerate: None,
         branches: Vec::new(),
         unresolved: Vec::new(),
+        singular_points: Vec::new(),
         boxes: 0,
         escalations: 0,
         divided_sides: Vec::new(),
@@ -327,6 +349,24 @@ pub fn patch_flecnodal(
         || solve_space_curve_where(&systems[1].0, &elliptic, opts),
     );
     for (chart, c) in charts.iter().zip([&cu, &cv]) {
+        out.singular_points
+            .extend(c.singular_points.iter().map(|sp| {
+                let exact: Vec<Rational> = sp
+                    .values
+                    .iter()
+                    .zip(&lambda)
+                    .map(|(t, l)| unwarp_exact(t, l))
+                    .collect();
+                let uv = [exact[0].to_f64(), exact[1].to_f64()];
+                FlecnodalSingular {
+                    patch: index,
+                    chart: *chart,
+                    exact: exact.iter().map(ToString::to_string).collect(),
+                    uv,
+                    xyz: eval.eval(uv[0], uv[1])[0],
+                    branches: sp.branches,
+                }
+            }));
         out.boxes += c.boxes;
         out.escalations += c.escalations;
         out.unresolved.extend(c.unresolved.iter().map(|u| {
@@ -440,10 +480,11 @@ fn join_charts<'a>(cu: &'a SpaceCurve, cv: &'a SpaceCurve) -> Joined<'a> {
             .iter()
             .map(|a| (id[offset + a.from], id[offset + a.to])),
     );
-    // A patch side ends a branch; an unmatched seam crossing or an unresolved box does not.
+    // A patch side or a singular point with proven branches ends a branch; an unmatched seam
+    // crossing or an unresolved box does not.
     let side = |v: usize| {
         let c = all[v].1;
-        c.on_boundary && c.axis != 2
+        (c.on_boundary && c.axis != 2) || c.singular.is_some()
     };
     chain(&edges, all.len(), &side)
         .into_iter()

@@ -1,7 +1,7 @@
 //! The report of `limn curves --kind flecnodal`: JSON (field names are a public contract, see
 //! README), text, SVG (projected along a view direction) and OBJ polylines.
 
-use super::flecnodal_curves::{FlecnodalCurves, FlecnodalUnresolved};
+use super::flecnodal_curves::{FlecnodalCurves, FlecnodalSingular, FlecnodalUnresolved};
 use super::render::{
     curves_svg, obj_polyline, reason_lines, verdict_lines, Work, INCOMPLETE_STYLE,
 };
@@ -85,6 +85,8 @@ pub struct FlecnodalReport {
     pub curves: Vec<FlecnodalCurve>,
     /// The boxes of `(u, v, s)` not decided.
     pub unresolved: Vec<FlecnodalUnresolved>,
+    /// Exact singular points of the curves, with their branches where decided.
+    pub singular_points: Vec<FlecnodalSingular>,
     /// Patches not solved.
     pub degenerate: Vec<DegeneratePatch>,
     /// Sides whose points are not analysed (collapsed sides).
@@ -120,6 +122,11 @@ impl FlecnodalReport {
             .patches
             .iter()
             .flat_map(|p| p.unresolved.iter().cloned())
+            .collect();
+        let singular_points: Vec<FlecnodalSingular> = r
+            .patches
+            .iter()
+            .flat_map(|p| p.singular_points.iter().cloned())
             .collect();
         let degenerate: Vec<DegeneratePatch> = r
             .patches
@@ -168,6 +175,7 @@ impl FlecnodalReport {
             },
             curves,
             unresolved,
+            singular_points,
             degenerate,
             unanalysed_sides,
         }
@@ -192,6 +200,17 @@ impl FlecnodalReport {
             self.unresolved.iter().map(|u| (u.reason.as_str(), u.patch)),
             "patches",
         );
+        for p in &self.singular_points {
+            out += &format!(
+                "  patch {}: singular point at (u, v, s) = ({}) exactly, {}\n",
+                p.patch,
+                p.exact.join(", "),
+                match p.branches {
+                    Some(b) => format!("{b} branches from it (proven)"),
+                    None => "its branches not resolved".to_string(),
+                }
+            );
+        }
         for d in &self.degenerate {
             out += &format!("  patch {}: degenerate: {}\n", d.patch, d.reason);
         }

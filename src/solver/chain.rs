@@ -11,13 +11,15 @@ pub(crate) struct Chain {
     pub edges: Vec<usize>,
     /// The last vertex joins the first.
     pub closed: bool,
-    /// Closed with every vertex of degree 2, or open with both ends of degree 1 on the
-    /// boundary (`boundary`): nothing of the curve is missing at its ends.
+    /// Closed with every vertex of degree 2 or on the boundary, or open with both ends on
+    /// the boundary (`boundary`: a side of the domain, or a proven branch point where several
+    /// chains meet): nothing of the curve is missing at its ends.
     pub complete: bool,
 }
 
 /// Chains the edges (vertex pairs, vertices `0..vertices`) through vertices of degree 2:
-/// open chains first, from the ends of degree 1 in increasing order, then the closed ones.
+/// open chains first, from the vertices of degree 1 or of 3 and more in increasing order (a
+/// chain from a vertex of degree 3 or more may come back to it: closed), then the closed ones.
 pub(crate) fn chain(
     edges: &[(usize, usize)],
     vertices: usize,
@@ -30,19 +32,22 @@ pub(crate) fn chain(
     }
     let mut used = vec![false; edges.len()];
     let mut chains = Vec::new();
-    for end in (0..vertices).filter(|&v| incident[v].len() == 1) {
-        let first = incident[end][0];
-        if used[first] {
-            continue;
+    for end in (0..vertices).filter(|&v| !incident[v].is_empty() && incident[v].len() != 2) {
+        for k in 0..incident[end].len() {
+            let first = incident[end][k];
+            if used[first] {
+                continue;
+            }
+            let (vertices, walked, last) = walk(edges, &incident, &mut used, end, first);
+            let closed = last == end;
+            let complete = boundary(end) && boundary(last) && incident[last].len() != 2;
+            chains.push(Chain {
+                vertices,
+                edges: walked,
+                closed,
+                complete,
+            });
         }
-        let (vertices, walked, last) = walk(edges, &incident, &mut used, end, first);
-        let complete = boundary(end) && boundary(last) && incident[last].len() == 1;
-        chains.push(Chain {
-            vertices,
-            edges: walked,
-            closed: false,
-            complete,
-        });
     }
     for i in 0..edges.len() {
         if used[i] {
@@ -51,7 +56,10 @@ pub(crate) fn chain(
         let start = edges[i].0;
         let (vertices, walked, last) = walk(edges, &incident, &mut used, start, i);
         let closed = last == start;
-        let complete = closed && vertices.iter().all(|&v| incident[v].len() == 2);
+        let complete = closed
+            && vertices
+                .iter()
+                .all(|&v| incident[v].len() == 2 || boundary(v));
         chains.push(Chain {
             vertices,
             edges: walked,
@@ -118,5 +126,31 @@ mod tests {
             (c[2].vertices.clone(), c[2].closed, c[2].complete),
             (vec![3, 4, 5], true, true)
         );
+    }
+
+    #[test]
+    fn chains_meet_at_a_branch_point() {
+        // A node 0 with four arms to the boundary vertices 1-4 (through 5 on the first arm),
+        // and a loop 0-6-7-0 through it.
+        let edges = [
+            (0, 5),
+            (5, 1),
+            (0, 2),
+            (3, 0),
+            (0, 4),
+            (0, 6),
+            (6, 7),
+            (7, 0),
+        ];
+        let boundary = |v: usize| v <= 4;
+        let c = chain(&edges, 8, &boundary);
+        assert_eq!(c.len(), 5);
+        assert!(c.iter().all(|x| x.complete), "{c:?}");
+        assert_eq!(c[0].vertices, vec![0, 5, 1]);
+        let lp = c.iter().find(|x| x.closed).unwrap();
+        assert_eq!(lp.vertices, vec![0, 6, 7]);
+        // Not a branch point: the arms are not complete there.
+        let c = chain(&edges, 8, &|v: usize| (1..=4).contains(&v));
+        assert!(c.iter().all(|x| !x.complete));
     }
 }

@@ -18,6 +18,10 @@
 
 use super::curve2::TIME_LIMIT_REASON;
 use super::dyadic::Dyadic;
+use super::star::{
+    exact_singular_point, simple_points_near, star_branches, ExactPartials, HigherPartials,
+    SingularPoint, StarBranch,
+};
 use super::system::{
     inverse, krawczyk, krawczyk_in_box, krawczyk_verdict, newton, split_box, DyadicBoxN,
     KrawczykVerdict, SystemOptions,
@@ -99,6 +103,11 @@ pub struct SpaceCrossing {
     /// only zero of the face system: another solve of a system with the same zeros on that
     /// hyperplane names the same point when its enclosure lies here.
     pub unique_in: Vec<[f64; 2]>,
+    /// An exact singular point of the curve (index into [`SpaceCurve::singular_points`]), the
+    /// centre of the arcs of one box: it lies on no face of a box (`axis` is then `nvars` and
+    /// `at` 0), and its arcs are the curve's branches through it (`proofs/space-curves.md` §6).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub singular: Option<usize>,
 }
 
 impl SpaceCrossing {
@@ -132,7 +141,9 @@ pub struct SpaceArc {
     /// The box that contains it, `[lo, hi]` per variable.
     #[serde(rename = "box")]
     pub cell: Vec<[f64; 2]>,
-    /// The variable the arc is a graph over (strictly monotone along it).
+    /// The variable the arc is a graph over (strictly monotone along it); `nvars` for an arc
+    /// from a singular point, which is a graph over the distance from it (radially, in the
+    /// box's own scale).
     pub monotone_in: usize,
     /// With a tolerance: per variable, a proven bound on the difference in that coordinate
     /// between corresponding points of the arc and of the segment between its crossings'
@@ -162,6 +173,24 @@ pub struct SpaceUnresolved {
     pub reason: String,
 }
 
+/// An exact rational singular point of the curve: `F(p) = 0` and `DF(p)` of rank below `n − 1`,
+/// both checked in exact arithmetic.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct SpaceSingularPoint {
+    /// Its exact coordinates, `"a/b"`.
+    pub exact: Vec<String>,
+    /// The same as rationals.
+    #[serde(skip)]
+    pub values: Vec<Rational>,
+    /// The same in f64 (nearest).
+    pub point: Vec<f64>,
+    /// Its crossing (the centre of its arcs) when the star test decided a box around it;
+    /// `None`: its branches are not resolved (the boxes around it are unresolved).
+    pub crossing: Option<usize>,
+    /// The number of branches from it (arcs of the curve ending there), when decided.
+    pub branches: Option<usize>,
+}
+
 /// What the n-variable curve solver found.
 #[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
 pub struct SpaceCurve {
@@ -175,6 +204,9 @@ pub struct SpaceCurve {
     pub branches: Vec<SpaceBranch>,
     /// Boxes left undecided.
     pub unresolved: Vec<SpaceUnresolved>,
+    /// The exact singular points found near undecided boxes, with their branches where the
+    /// star test decided them.
+    pub singular_points: Vec<SpaceSingularPoint>,
     /// Boxes examined.
     pub boxes: usize,
     /// Boxes whose polynomials were recomputed exactly (their f64 enclosures were too wide).
@@ -225,6 +257,8 @@ struct RawCrossing {
     /// Where it is the only root of the face system (face coordinates: `axis` left out).
     unique_in: Vec<[f64; 2]>,
     on_boundary: bool,
+    /// The centre of a star: this singular point (index into the solver's list).
+    singular: Option<usize>,
 }
 
 struct RawArc {
@@ -238,8 +272,10 @@ struct RawArc {
 /// How a box was decided.
 enum Settled {
     /// Its crossings (sorted along the monotone variable), paired into arcs in that order,
-    /// and whether every arc is within the tolerance.
+    /// and whether every arc is within the tolerance. With a `center` (a singular point, §6),
+    /// every crossing is joined to it instead.
     Arcs {
+        center: Option<RawCrossing>,
         monotone_in: usize,
         crossings: Vec<RawCrossing>,
         deviations: Vec<Option<Vec<f64>>>,
@@ -286,6 +322,14 @@ pub fn warp(p: &Bernstein<Rational>, lambda: &[Rational]) -> Bernstein<Rational>
         out.coeffs_mut()[flat] *= f;
     }
     out
+}
+
+/// The point `u` of the Möbius map of [`warp`] at a rational `t`, exactly:
+/// `u = λ t / (1 + (λ − 1) t)`.
+pub fn unwarp_exact(t: &Rational, lambda: &Rational) -> Rational {
+    let num = Rational::from(lambda * t);
+    let den = Rational::from(1) + Rational::from(lambda - 1u32) * t;
+    num / den
 }
 
 /// The point `u` of the Möbius map of [`warp`] at `t` (f64, for drawing).
@@ -643,6 +687,9 @@ struct Solver<'a> {
     faces: HashMap<FaceKey, Option<Vec<FaceRoot>>>,
     n: usize,
     opts: &'a SpaceCurveOptions,
+    /// The exact singular points known (§6), and the partials their star tests use.
+    singular: Vec<SingularPoint>,
+    partials: Option<HigherPartials>,
 }
 
 impl Solver<'_> {
@@ -681,14 +728,192 @@ impl Solver<'_> {
             .iter()
             .find_map(|&(i, _)| regular(&minor(i)).map(|(c, b)| (i, c, b)))
         else {
-            return Settled::Open(
-                "no Jacobian minor is proven regular (near a singular point of the curve, or \
-                 where its equations are nearly dependent)",
-            );
+            return Settled::Open(NO_REGULAR_MINOR);
         };
+        let mut crossings = match self.face_crossings(cell, polys, &|_, _| false) {
+            Ok(c) => c,
+            Err(reason) => return Settled::Open(reason),
+        };
+        if crossings.len() % 2 == 1 {
+            return Settled::Open("an odd number of face crossings");
+        }
+        crossings.sort_by(|a, b| {
+            (a.enclosure[i][0] + a.enclosure[i][1])
+                .total_cmp(&(b.enclosure[i][0] + b.enclosure[i][1]))
+        });
+        if crossings
+            .windows(2)
+            .any(|w| w[0].enclosure[i][1] >= w[1].enclosure[i][0])
+        {
+            return Settled::Open(
+                "two face crossings are not separated along the monotone variable",
+            );
+        }
+        let (deviations, accurate) =
+            self.deviations(cell, &partials, &jac, i, &c, beta, &crossings);
+        Settled::Arcs {
+            center: None,
+            monotone_in: i,
+            crossings,
+            deviations,
+            accurate,
+        }
+    }
+
+    /// Decides a box around the singular point `index` by the star test (§6): its branches,
+    /// each joined to the face crossing it ends at.
+    fn star(
+        &mut self,
+        cell: &DyadicBoxN,
+        polys: &dyn Fn() -> Vec<Bernstein<Interval>>,
+        index: usize,
+    ) -> Settled {
+        let sp = &self.singular[index];
+        let lo: Vec<f64> = cell.iter().map(|d| d.0.to_f64()).collect();
+        let hi: Vec<f64> = cell.iter().map(|d| d.1.to_f64()).collect();
+        let partials = self
+            .partials
+            .as_ref()
+            .expect("partials with singular points");
+        let branches = match star_branches(sp, partials, &lo, &hi) {
+            Ok(b) => b,
+            Err(reason) => return Settled::Open(reason),
+        };
+        // The faces through the singular point (sides of the unit box) hold no crossing but
+        // it: the branches end on the other faces.
+        let exact = sp.exact.clone();
+        let on_side = move |axis: usize, side: bool| {
+            let at = if side { cell[axis].1 } else { cell[axis].0 };
+            exact[axis] == at.to_rational()
+        };
+        let crossings = match self.face_crossings(cell, &polys(), &on_side) {
+            Ok(c) => c,
+            Err(reason) => return Settled::Open(reason),
+        };
+        let sp = &self.singular[index];
+        // Each crossing is the end of exactly one branch: its enclosure lies in the region of
+        // the facet where that branch's end is the only point of the curve on the face.
+        if crossings.len() != branches.len() {
+            return Settled::Open(
+                "the face crossings do not match the branches from the singular point",
+            );
+        }
+        let mut used = vec![false; branches.len()];
+        let mut order = Vec::with_capacity(branches.len());
+        for c in &crossings {
+            let upper = c.at == cell[c.axis].1;
+            let matches: Vec<usize> = (0..branches.len())
+                .filter(|&b| {
+                    let br = &branches[b];
+                    br.axis == c.axis
+                        && br.upper == upper
+                        && (0..self.n).filter(|&k| k != c.axis).all(|k| {
+                            let region = sp.at[k].add(&br.region[k]);
+                            region.lo() <= c.enclosure[k][0] && c.enclosure[k][1] <= region.hi()
+                        })
+                })
+                .collect();
+            match matches.as_slice() {
+                [b] if !used[*b] => {
+                    used[*b] = true;
+                    order.push(*b);
+                }
+                _ => {
+                    return Settled::Open(
+                        "the face crossings do not match the branches from the singular point",
+                    )
+                }
+            }
+        }
+        let center = RawCrossing {
+            axis: self.n,
+            at: Dyadic::ZERO,
+            enclosure: sp.at.iter().map(|x| [x.lo(), x.hi()]).collect(),
+            unique_in: sp.at.iter().map(|x| [x.lo(), x.hi()]).collect(),
+            on_boundary: sp.exact.iter().any(|x| *x == 0 || *x == 1),
+            singular: Some(index),
+        };
+        let (deviations, accurate) =
+            self.star_deviations(sp, &center, &branches, &order, &crossings);
+        Settled::Arcs {
+            center: Some(center),
+            monotone_in: self.n,
+            crossings,
+            deviations,
+            accurate,
+        }
+    }
+
+    /// Per branch of a star, a bound per variable on the distance between the branch and the
+    /// segment from the singular point to its crossing (§6: every point `p + r w(r)` is within
+    /// `|w(r) − (c − p)|` of `p + r (c − p)`, and `w(r)` lies in the branch's image).
+    fn star_deviations(
+        &self,
+        sp: &SingularPoint,
+        center: &RawCrossing,
+        branches: &[StarBranch],
+        order: &[usize],
+        crossings: &[RawCrossing],
+    ) -> (Vec<Option<Vec<f64>>>, bool) {
+        if self.opts.tolerance.is_none() {
+            return (vec![None; crossings.len()], true);
+        }
+        let mut accurate = true;
+        let devs = crossings
+            .iter()
+            .zip(order)
+            .map(|(c, &b)| {
+                let br = &branches[b];
+                let dev: Vec<f64> = (0..self.n)
+                    .map(|k| {
+                        let mid = |e: &[f64; 2]| 0.5 * (e[0] + e[1]);
+                        let drawn_p = mid(&center.enclosure[k]);
+                        // c̃ − p and the image of w(r) (the facet value on the face's axis).
+                        let to_end = Interval::point(mid(&c.enclosure[k])).sub(&sp.at[k]);
+                        let w = if k == br.axis {
+                            br.region[k]
+                        } else {
+                            br.image[k]
+                        };
+                        let spread = magnitude(&w.sub(&to_end));
+                        let start = magnitude(&sp.at[k].sub(&Interval::point(drawn_p)));
+                        Interval::point(spread).add(&Interval::point(start)).hi()
+                    })
+                    .collect();
+                if let Some(accept) = &self.opts.accept {
+                    accurate &= (accept.0)(&center.enclosure, &c.enclosure, &dev);
+                } else if let Some(tol) = &self.opts.tolerance {
+                    accurate &= dev.iter().zip(tol).all(|(d, t)| d <= t);
+                    if let Some(chord) = &self.opts.max_chord {
+                        let (a, e) = (&center.enclosure, &c.enclosure);
+                        accurate &= chord
+                            .iter()
+                            .enumerate()
+                            .all(|(k, l)| a[k][1].max(e[k][1]) - a[k][0].min(e[k][0]) <= *l);
+                    }
+                }
+                Some(dev)
+            })
+            .collect();
+        (devs, accurate)
+    }
+
+    /// The crossings of the curve with the faces of the box (all faces but those `skip`
+    /// names, by axis and side), each strictly inside its face (§3); `Err` if some face was
+    /// not decided.
+    fn face_crossings(
+        &mut self,
+        cell: &DyadicBoxN,
+        polys: &[Bernstein<Interval>],
+        skip: &dyn Fn(usize, bool) -> bool,
+    ) -> Result<Vec<RawCrossing>, &'static str> {
+        let n = self.n;
         let mut crossings = Vec::new();
         for axis in 0..n {
             for (side, at) in [(false, cell[axis].0), (true, cell[axis].1)] {
+                if skip(axis, side) {
+                    continue;
+                }
                 // The box's own coefficients on the face are the face polynomials' (exactly
                 // the Bernstein coefficients with that index at 0 or at the degree): where
                 // one equation has a strict sign there, the face holds no crossing.
@@ -720,7 +945,7 @@ impl Solver<'_> {
                     }
                 };
                 let Some(roots) = roots else {
-                    return Settled::Open(
+                    return Err(
                         "a face crossing was not isolated (the curve touches a face of the box)",
                     );
                 };
@@ -731,9 +956,7 @@ impl Solver<'_> {
                         .zip(&domain)
                         .all(|(e, d)| d.0.to_f64() < e[0] && e[1] < d.1.to_f64());
                     if !strictly_inside {
-                        return Settled::Open(
-                            "the curve passes through or near an edge of the box",
-                        );
+                        return Err("the curve passes through or near an edge of the box");
                     }
                     let a = at.to_f64();
                     let mut enclosure = r.enclosure.clone();
@@ -744,33 +967,12 @@ impl Solver<'_> {
                         enclosure,
                         unique_in: r.unique_in,
                         on_boundary: at == Dyadic::ZERO || at == Dyadic::ONE,
+                        singular: None,
                     });
                 }
             }
         }
-        if crossings.len() % 2 == 1 {
-            return Settled::Open("an odd number of face crossings");
-        }
-        crossings.sort_by(|a, b| {
-            (a.enclosure[i][0] + a.enclosure[i][1])
-                .total_cmp(&(b.enclosure[i][0] + b.enclosure[i][1]))
-        });
-        if crossings
-            .windows(2)
-            .any(|w| w[0].enclosure[i][1] >= w[1].enclosure[i][0])
-        {
-            return Settled::Open(
-                "two face crossings are not separated along the monotone variable",
-            );
-        }
-        let (deviations, accurate) =
-            self.deviations(cell, &partials, &jac, i, &c, beta, &crossings);
-        Settled::Arcs {
-            monotone_in: i,
-            crossings,
-            deviations,
-            accurate,
-        }
+        Ok(crossings)
     }
 
     /// Per arc (consecutive pairs of crossings) and variable, a bound on the distance between
@@ -988,21 +1190,273 @@ pub fn solve_space_curve_excluding(
         faces: HashMap::new(),
         n,
         opts,
+        singular: Vec::new(),
+        partials: None,
     };
     let mut out = SpaceCurve {
         nvars: n,
         within_tolerance: true,
         ..SpaceCurve::default()
     };
-    let mut raw: Vec<RawCrossing> = Vec::new();
-    let mut arcs: Vec<RawArc> = Vec::new();
+    let mut leaves = Leaves::default();
+    subdivide(&mut solver, &eqs, &filters, verdict, &mut out, &mut leaves);
+    // Exact singular points near the boxes left undecided, and the star test around them
+    // (§6): a box that it decides replaces the leaves inside it.
+    solver.singular = singular_points_near(&eqs, &out.unresolved, opts);
+    if !solver.singular.is_empty() {
+        solver.partials = Some(HigherPartials::new(&eqs));
+    }
+    let mut starred = vec![None; solver.singular.len()];
+    for (k, star) in starred.iter_mut().enumerate() {
+        *star = star_around(&mut solver, k, &eqs, &mut out, &mut leaves);
+    }
+    let named = assemble(&mut out, leaves.crossings, leaves.arcs);
+    out.singular_points = solver
+        .singular
+        .iter()
+        .zip(starred)
+        .map(|(sp, star)| SpaceSingularPoint {
+            exact: sp.exact_strings(),
+            values: sp.exact.clone(),
+            point: sp.point(),
+            crossing: star.map(|(c, _)| named[c]),
+            branches: star.map(|(_, b)| b),
+        })
+        .collect();
+    out
+}
+
+/// What the subdivision decided, before the crossings are named: the crossings and arcs of
+/// the settled leaves, and the leaves the caller dropped or gave up on (which no star box may
+/// cover).
+#[derive(Default)]
+struct Leaves {
+    crossings: Vec<RawCrossing>,
+    arcs: Vec<RawArc>,
+    dropped: Vec<Vec<[f64; 2]>>,
+}
+
+/// Decides the box around the singular point `k` by the star test (§6), from the smallest
+/// depth where it succeeds (and, with a tolerance, its arcs are accurate, or the depth is the
+/// deepest undecided box's around the point) down: the leaves inside it are replaced by its
+/// arcs. The star's centre (raw crossing index) and its number of branches.
+fn star_around(
+    solver: &mut Solver,
+    k: usize,
+    eqs: &[Bernstein<Rational>],
+    out: &mut SpaceCurve,
+    leaves: &mut Leaves,
+) -> Option<(usize, usize)> {
+    let sp = &solver.singular[k];
+    let p = sp.point();
+    let holds_p = |cell: &[[f64; 2]]| cell.iter().zip(&p).all(|(b, x)| b[0] <= *x && *x <= b[1]);
+    let width = |cell: &[[f64; 2]]| cell[0][1] - cell[0][0];
+    // The undecided leaves around the point, and the smallest (no box of the star may be
+    // smaller than a leaf that holds the point, which it would have to cut).
+    let around: Vec<f64> = out
+        .unresolved
+        .iter()
+        .filter(|u| holds_p(&u.cell))
+        .map(|u| width(&u.cell))
+        .collect();
+    let smallest = around.iter().copied().fold(f64::INFINITY, f64::min);
+    let largest = around.iter().copied().fold(0.0, f64::max);
+    if around.is_empty() {
+        return None;
+    }
+    let exact = sp.exact.clone();
+    for depth in STAR_MIN_DEPTH..=solver.opts.max_depth {
+        if depth > 60 || (-(depth as f64)).exp2() < smallest {
+            break;
+        }
+        // A leaf that holds the point and is larger than this box (decided with a smaller
+        // budget, say) cannot be cut.
+        if (-(depth as f64)).exp2() < largest {
+            break;
+        }
+        // The dyadic box of this depth around the point.
+        let cell: DyadicBoxN = exact
+            .iter()
+            .map(|x| {
+                let scale = Rational::from(rug::Integer::from(1) << depth);
+                let i = Rational::from(x * &scale).floor();
+                let top = rug::Integer::from(1) << depth;
+                let i = i.numer().clone().min(top.clone() - 1u32);
+                let lo = i.to_u64().expect("depth ≤ 60");
+                (Dyadic::new(lo, depth), Dyadic::new(lo + 1, depth))
+            })
+            .collect();
+        let lo: Vec<Rational> = cell.iter().map(|d| d.0.to_rational()).collect();
+        let hi: Vec<Rational> = cell.iter().map(|d| d.1.to_rational()).collect();
+        if !solver.singular[k].admissible_in(&lo, &hi) {
+            continue;
+        }
+        let fcell = f64_box(&cell);
+        if leaves.dropped.iter().any(|d| overlaps(d, &fcell)) {
+            continue;
+        }
+        // The box's polynomials, for its face crossings (only if its boundary is decided).
+        let polys = || -> Vec<Bernstein<Interval>> {
+            eqs.iter()
+                .map(|f| f.restrict_box_rational(&lo, &hi).convert(Precision::F64))
+                .collect()
+        };
+        let Settled::Arcs {
+            center: Some(center),
+            monotone_in,
+            crossings,
+            deviations,
+            accurate,
+        } = solver.star(&cell, &polys, k)
+        else {
+            continue;
+        };
+        let deepest = (-(depth as f64 + 1.0)).exp2() < smallest;
+        if !accurate && !deepest {
+            continue;
+        }
+        // Replace the leaves inside the box by the star.
+        leaves.retain_outside(&fcell);
+        out.unresolved.retain(|u| !within(&u.cell, &fcell));
+        out.within_tolerance &= accurate;
+        let c = leaves.crossings.len();
+        let count = crossings.len();
+        leaves.crossings.push(center);
+        for (j, deviation) in deviations.into_iter().enumerate() {
+            leaves.arcs.push(RawArc {
+                from: c,
+                to: c + 1 + j,
+                cell: fcell.clone(),
+                monotone_in,
+                deviation,
+            });
+        }
+        leaves.crossings.extend(crossings);
+        return Some((c, count));
+    }
+    // Not decided: the undecided boxes that hold the point say so.
+    for u in out.unresolved.iter_mut().filter(|u| holds_p(&u.cell)) {
+        u.reason = UNRESOLVED_SINGULAR.to_string();
+    }
+    None
+}
+
+impl Leaves {
+    /// Drops the arcs (and their crossings) of the leaves inside `cell`.
+    fn retain_outside(&mut self, cell: &[[f64; 2]]) {
+        let mut keep_crossing = vec![true; self.crossings.len()];
+        let arcs = std::mem::take(&mut self.arcs);
+        let mut kept = Vec::with_capacity(arcs.len());
+        for a in arcs {
+            if within(&a.cell, cell) {
+                keep_crossing[a.from] = false;
+                keep_crossing[a.to] = false;
+            } else {
+                kept.push(a);
+            }
+        }
+        let mut index = vec![usize::MAX; self.crossings.len()];
+        let crossings = std::mem::take(&mut self.crossings);
+        for (k, c) in crossings.into_iter().enumerate() {
+            if keep_crossing[k] {
+                index[k] = self.crossings.len();
+                self.crossings.push(c);
+            }
+        }
+        for a in kept.iter_mut() {
+            a.from = index[a.from];
+            a.to = index[a.to];
+        }
+        self.arcs = kept;
+    }
+}
+
+/// Whether two closed boxes share interior points.
+fn overlaps(a: &[[f64; 2]], b: &[[f64; 2]]) -> bool {
+    a.iter().zip(b).all(|(x, y)| x[0] < y[1] && y[0] < x[1])
+}
+
+/// The reason of a box the graph test could not decide for want of a regular minor.
+const NO_REGULAR_MINOR: &str = "no Jacobian minor is proven regular (near a singular point of the \
+                                curve, or where its equations are nearly dependent)";
+
+/// The reason of a box around a known singular point that the star test did not decide.
+const UNRESOLVED_SINGULAR: &str = "holds an exact singular point of the curve (listed in \
+                                   singular_points) whose branches were not resolved";
+
+/// The star test is tried on boxes around a singular point from this depth on.
+const STAR_MIN_DEPTH: u32 = 2;
+
+/// The most undecided boxes looked at for exact singular points, and the most candidates
+/// checked exactly.
+const SINGULAR_BOXES: usize = 512;
+const SINGULAR_CANDIDATES: usize = 24;
+
+/// The most singular points kept per curve. On a 2-dimensional set of solutions (a plane
+/// tangent along a circle, for bitangents) every point is one, and their stars all fail.
+const SINGULAR_POINTS: usize = 4;
+
+/// The exact singular points of `F = 0` at the simplest rational points near undecided boxes
+/// whose reason is a Jacobian not proven regular (each checked exactly).
+fn singular_points_near(
+    eqs: &[Bernstein<Rational>],
+    unresolved: &[SpaceUnresolved],
+    opts: &SpaceCurveOptions,
+) -> Vec<SingularPoint> {
+    // The simplest candidates first (the sum of their denominators' sizes): where a whole
+    // set of points is singular, the ones listed are the simple ones.
+    let mut seen = std::collections::HashSet::new();
+    let mut candidates: Vec<Vec<Rational>> = unresolved
+        .iter()
+        .filter(|u| u.reason == NO_REGULAR_MINOR)
+        .take(SINGULAR_BOXES)
+        .flat_map(|u| simple_points_near(&u.cell))
+        .filter(|p| seen.insert(p.clone()))
+        .collect();
+    let size = |p: &Vec<Rational>| -> u32 { p.iter().map(|x| x.denom().significant_bits()).sum() };
+    candidates.sort_by_cached_key(size);
+    candidates.truncate(SINGULAR_CANDIDATES);
+    // Interval values first: most candidates are off the curve, which they show cheaply.
+    let enclosed: Vec<Bernstein<Interval>> =
+        eqs.iter().map(|f| f.convert(Precision::F64)).collect();
+    let maybe_zero = |p: &[Rational]| {
+        let at: Vec<Interval> = p
+            .iter()
+            .map(|x| Interval::from_rational(x, Precision::F64))
+            .collect();
+        enclosed.iter().all(|f| f.eval(&at).contains(0.0))
+    };
+    let maybe: Vec<Vec<Rational>> = candidates.into_iter().filter(|p| maybe_zero(p)).collect();
+    if maybe.is_empty() {
+        return Vec::new();
+    }
+    let partials = ExactPartials::new(eqs);
+    maybe
+        .into_iter()
+        .take_while(|_| opts.deadline.is_none_or(|d| std::time::Instant::now() < d))
+        .filter_map(|p| exact_singular_point(eqs, &partials, p))
+        .take(SINGULAR_POINTS)
+        .collect()
+}
+
+/// The subdivision: every box excluded, settled (its crossings and arcs added to `leaves`),
+/// dropped by the caller, or unresolved (added to `out`).
+fn subdivide(
+    solver: &mut Solver,
+    eqs: &[Bernstein<Rational>],
+    filters: &[Bernstein<Rational>],
+    verdict: &dyn Fn(&[[f64; 2]], u32) -> BoxVerdict,
+    out: &mut SpaceCurve,
+    leaves: &mut Leaves,
+) {
+    let (n, opts) = (solver.n, solver.opts);
     // Each box carries the equations, then the filters.
     let mut stack = vec![Item {
         cell: vec![(Dyadic::ZERO, Dyadic::ONE); n],
         depth: 0,
         polys: eqs
             .iter()
-            .chain(&filters)
+            .chain(filters)
             .map(|p| p.convert(Precision::F64))
             .collect(),
         exact: false,
@@ -1016,8 +1470,13 @@ pub fn solve_space_curve_excluding(
         }
         match verdict(&f64_box(&item.cell), item.depth) {
             BoxVerdict::Solve => {}
-            BoxVerdict::Drop => continue,
+            BoxVerdict::Drop => {
+                leaves.dropped.push(f64_box(&item.cell));
+                continue;
+            }
             BoxVerdict::Unresolved(reason) => {
+                // Neither may a star box cover it: the caller's reason stands.
+                leaves.dropped.push(f64_box(&item.cell));
                 out.unresolved.push(SpaceUnresolved {
                     cell: f64_box(&item.cell),
                     reason: reason.to_string(),
@@ -1027,6 +1486,7 @@ pub fn solve_space_curve_excluding(
         }
         let (reason, accurate_enough) = match solver.settle(&item.cell, equations) {
             Settled::Arcs {
+                center: _,
                 monotone_in,
                 crossings,
                 deviations,
@@ -1039,10 +1499,10 @@ pub fn solve_space_curve_excluding(
                         .is_some_and(|d| std::time::Instant::now() >= d);
                 if accurate || last_chance {
                     out.within_tolerance &= accurate;
-                    let first = raw.len();
-                    raw.extend(crossings);
+                    let first = leaves.crossings.len();
+                    leaves.crossings.extend(crossings);
                     for (k, deviation) in deviations.into_iter().enumerate() {
-                        arcs.push(RawArc {
+                        leaves.arcs.push(RawArc {
                             from: first + 2 * k,
                             to: first + 2 * k + 1,
                             cell: f64_box(&item.cell),
@@ -1063,7 +1523,7 @@ pub fn solve_space_curve_excluding(
             let hi: Vec<Rational> = item.cell.iter().map(|d| d.1.to_rational()).collect();
             let polys = eqs
                 .iter()
-                .chain(&filters)
+                .chain(filters)
                 .map(|p| p.restrict_box_rational(&lo, &hi).convert(Precision::F64))
                 .collect();
             out.boxes -= 1;
@@ -1108,13 +1568,12 @@ pub fn solve_space_curve_excluding(
             });
         }
     }
-    assemble(&mut out, raw, arcs);
-    out
 }
 
 /// Names each crossing once (two raw crossings on one hyperplane are the same point when one's
-/// enclosure lies in the other's uniqueness region), and chains the arcs into branches.
-fn assemble(out: &mut SpaceCurve, raw: Vec<RawCrossing>, arcs: Vec<RawArc>) {
+/// enclosure lies in the other's uniqueness region), and chains the arcs into branches; the
+/// named crossing of each raw one.
+fn assemble(out: &mut SpaceCurve, raw: Vec<RawCrossing>, arcs: Vec<RawArc>) -> Vec<usize> {
     let mut parent: Vec<usize> = (0..raw.len()).collect();
     fn find(parent: &mut [usize], mut x: usize) -> usize {
         while parent[x] != x {
@@ -1125,7 +1584,7 @@ fn assemble(out: &mut SpaceCurve, raw: Vec<RawCrossing>, arcs: Vec<RawArc>) {
     }
     let mut by_plane: HashMap<(usize, Dyadic), Vec<usize>> = HashMap::new();
     for (k, c) in raw.iter().enumerate() {
-        if !c.on_boundary {
+        if !c.on_boundary && c.singular.is_none() {
             by_plane.entry((c.axis, c.at)).or_default().push(k);
         }
     }
@@ -1156,10 +1615,12 @@ fn assemble(out: &mut SpaceCurve, raw: Vec<RawCrossing>, arcs: Vec<RawArc>) {
                 enclosure: c.enclosure.clone(),
                 on_boundary: c.on_boundary,
                 unique_in: c.unique_in.clone(),
+                singular: c.singular,
             });
         }
     }
-    let mut ends = |k: usize| id[&find(&mut parent, k)];
+    let named: Vec<usize> = (0..raw.len()).map(|k| id[&find(&mut parent, k)]).collect();
+    let ends = |k: usize| named[k];
     out.arcs = arcs
         .into_iter()
         .map(|a| SpaceArc {
@@ -1171,7 +1632,12 @@ fn assemble(out: &mut SpaceCurve, raw: Vec<RawCrossing>, arcs: Vec<RawArc>) {
         })
         .collect();
     let edges: Vec<(usize, usize)> = out.arcs.iter().map(|a| (a.from, a.to)).collect();
-    let boundary: Vec<bool> = out.crossings.iter().map(|c| c.on_boundary).collect();
+    // A branch ending at a singular point whose star was decided is complete there.
+    let boundary: Vec<bool> = out
+        .crossings
+        .iter()
+        .map(|c| c.on_boundary || c.singular.is_some())
+        .collect();
     out.branches = super::chain::chain(&edges, out.crossings.len(), &|v| boundary[v])
         .into_iter()
         .map(|c| SpaceBranch {
@@ -1180,4 +1646,5 @@ fn assemble(out: &mut SpaceCurve, raw: Vec<RawCrossing>, arcs: Vec<RawArc>) {
             complete: c.complete,
         })
         .collect();
+    named
 }

@@ -10,6 +10,7 @@ pub mod dyadic;
 pub mod lines;
 pub mod precision;
 pub mod singular;
+pub mod star;
 pub mod system;
 pub mod univariate;
 
