@@ -24,8 +24,8 @@ use crate::solver::chain::chain;
 use crate::solver::curve2::TIME_LIMIT_REASON;
 use crate::solver::curve_n::ArcAccept;
 use crate::solver::curve_n::{
-    solve_space_curve_excluding, unwarp, unwarp_exact, unwarp_interval, warp, BoxVerdict,
-    SpaceCurve, SpaceCurveOptions,
+    solve_space_curve_excluding, unwarp, unwarp_interval, warp, BoxVerdict, SpaceCurve,
+    SpaceCurveOptions,
 };
 use crate::surface::RationalPatch;
 use rayon::prelude::*;
@@ -421,12 +421,7 @@ pub fn pair_bitangents(
         .singular_points
         .iter()
         .map(|sp| {
-            let x: Vec<Rational> = sp
-                .values
-                .iter()
-                .zip(&lambdas)
-                .map(|(t, l)| unwarp_exact(t, l))
-                .collect();
+            let x = sp.unwarped(&lambdas);
             let f: Vec<f64> = x.iter().map(Rational::to_f64).collect();
             BitangentSingular {
                 patches: [i, j],

@@ -20,8 +20,8 @@ use crate::number::{Interval, Number, Rational};
 use crate::solver::chain::chain;
 use crate::solver::curve2::TIME_LIMIT_REASON;
 use crate::solver::curve_n::{
-    solve_space_curve_where, unwarp, unwarp_exact, unwarp_interval, warp, ArcAccept, SpaceCrossing,
-    SpaceCurve, SpaceCurveOptions,
+    solve_space_curve_where, unwarp, unwarp_interval, warp, ArcAccept, SpaceCrossing, SpaceCurve,
+    SpaceCurveOptions,
 };
 use crate::surface::RationalPatch;
 use rayon::prelude::*;
@@ -351,12 +351,7 @@ pub fn patch_flecnodal(
     for (chart, c) in charts.iter().zip([&cu, &cv]) {
         out.singular_points
             .extend(c.singular_points.iter().map(|sp| {
-                let exact: Vec<Rational> = sp
-                    .values
-                    .iter()
-                    .zip(&lambda)
-                    .map(|(t, l)| unwarp_exact(t, l))
-                    .collect();
+                let exact = sp.unwarped(&lambda);
                 let uv = [exact[0].to_f64(), exact[1].to_f64()];
                 FlecnodalSingular {
                     patch: index,

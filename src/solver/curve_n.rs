@@ -191,6 +191,17 @@ pub struct SpaceSingularPoint {
     pub branches: Option<usize>,
 }
 
+impl SpaceSingularPoint {
+    /// Its exact coordinates before the solver's [`warp`] with the factors `lambda`.
+    pub fn unwarped(&self, lambda: &[Rational]) -> Vec<Rational> {
+        self.values
+            .iter()
+            .zip(lambda)
+            .map(|(t, l)| unwarp_exact(t, l))
+            .collect()
+    }
+}
+
 /// What the n-variable curve solver found.
 #[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
 pub struct SpaceCurve {
