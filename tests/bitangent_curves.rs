@@ -272,3 +272,48 @@ fn two_spheres_bitangents_are_the_tangent_cones() {
     }
     eprintln!("line error bounds on the sphere: {line_errors:?}");
 }
+
+#[test]
+fn the_teapots_rim_top_is_a_plane_of_bitangent_pairs() {
+    // The horizontal plane on the rim's top circle (u = 1/2 of patches 0-3) is tangent all
+    // along it: every two of its points are a bitangent pair, a 2-dimensional set that no
+    // Jacobian minor resolves. It is found exactly (through the singular points of the
+    // system there) and the boxes next to it say so.
+    let teapot = limn::testing::teapot();
+    let p = |k: usize| &teapot.patches[k].surface;
+    let started = std::time::Instant::now();
+    let b = pair_bitangents(p(0), 0, p(1), 1, &BitangentOptions::default());
+    eprintln!("pair 0-1: {:?}, {} boxes", started.elapsed(), b.boxes);
+    assert!(!b.singular_points.is_empty());
+    let set = b
+        .plane_sets
+        .iter()
+        .find(|s| s.first == "u = 1/2" && s.second == "u = 1/2")
+        .unwrap_or_else(|| panic!("{:#?}", b.plane_sets));
+    assert!((set.normal[2].abs() - 1.0).abs() < 1e-12, "{set:?}");
+    assert!(
+        (set.offset * set.normal[2] - 2.4984375).abs() < 1e-9,
+        "{set:?}"
+    );
+    let labelled = b
+        .unresolved
+        .iter()
+        .filter(|u| u.reason.contains("2-dimensional set of bitangent pairs"))
+        .count();
+    eprintln!(
+        "{labelled} of {} unresolved boxes are next to it",
+        b.unresolved.len()
+    );
+    assert!(labelled > 0);
+    // Those boxes do lie next to both lines.
+    for u in b
+        .unresolved
+        .iter()
+        .filter(|u| u.reason.contains("2-dimensional"))
+    {
+        for k in [0, 2] {
+            let w = u.cell[k][1] - u.cell[k][0];
+            assert!(u.cell[k][0] - w <= 0.5 && 0.5 <= u.cell[k][1] + w, "{u:?}");
+        }
+    }
+}

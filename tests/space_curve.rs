@@ -208,6 +208,38 @@ fn a_star_on_the_boundary_and_an_isolated_point() {
 }
 
 #[test]
+fn two_nodes_each_get_their_star() {
+    // Two parallel lines x − y = −1/35 and x − y = 1/5 crossed by x + y/2 = 43/70, in the
+    // plane z = 1/3: nodes at (2/5, 3/7) and (10/21, 29/105), each with four arcs.
+    let n = 3;
+    let (x, y) = (var(n, 0), var(n, 1));
+    let l1 = &(&x - &y) + &konst(n, q(1, 35));
+    let l2 = &(&x - &y) - &konst(n, q(1, 5));
+    let l3 = &(&x + &(&y * &konst(n, q(1, 2)))) - &konst(n, q(43, 70));
+    let eqs = vec![&(&l1 * &l2) * &l3, &var(n, 2) - &konst(n, q(1, 3))];
+    let c = solve_space_curve(&eqs, &SpaceCurveOptions::default());
+    assert!(c.unresolved.is_empty(), "{:#?}", c.unresolved);
+    let mut found: Vec<Vec<String>> = Vec::new();
+    for (k, sp) in c.singular_points.iter().enumerate() {
+        let centre = sp.crossing.expect("decided");
+        assert_eq!(c.crossings[centre].singular, Some(k));
+        assert_eq!(sp.branches, Some(4));
+        let degree = c
+            .arcs
+            .iter()
+            .filter(|a| a.from == centre || a.to == centre)
+            .count();
+        assert_eq!(degree, 4);
+        found.push(sp.exact.clone());
+    }
+    found.sort();
+    assert_eq!(found, [["10/21", "29/105", "1/3"], ["2/5", "3/7", "1/3"]]);
+    // Three lines, two nodes: seven pieces between the nodes and the boundary, all complete.
+    assert_eq!(c.branches.len(), 7, "{:#?}", c.branches);
+    assert!(c.is_certified());
+}
+
+#[test]
 fn a_cusp_is_found_exactly_but_its_branches_stay_unresolved() {
     let n = 3;
     // (x − 2/5)² = (y − 3/7)³ on z = 1/3: both branches leave the cusp tangent to x = 2/5, so

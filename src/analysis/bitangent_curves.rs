@@ -18,6 +18,7 @@ use super::bitangent::{
 };
 use super::line_cone::{largest, piece_error};
 use super::patch_curve::{Accuracy, Evaluator};
+use super::tangent_lines::{tangent_plane_along, TangentLine};
 use crate::model::Model;
 use crate::number::{Interval, Number, Rational};
 use crate::solver::chain::chain;
@@ -25,7 +26,7 @@ use crate::solver::curve2::TIME_LIMIT_REASON;
 use crate::solver::curve_n::ArcAccept;
 use crate::solver::curve_n::{
     solve_space_curve_excluding, unwarp, unwarp_interval, warp, BoxVerdict, SpaceCurve,
-    SpaceCurveOptions,
+    SpaceCurveOptions, NO_REGULAR_MINOR, UNRESOLVED_SINGULAR,
 };
 use crate::surface::RationalPatch;
 use rayon::prelude::*;
@@ -146,6 +147,23 @@ pub struct BitangentSingular {
     pub branches: Option<usize>,
 }
 
+/// A 2-dimensional set of bitangent pairs: one plane is tangent to the first patch all along
+/// a line and to the second all along another (checked exactly, [`tangent_plane_along`]), so
+/// every point of the one line paired with every point of the other is a bitangent pair.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct BitangentPlaneSet {
+    /// The patches.
+    pub patches: [usize; 2],
+    /// The line of the first patch, `"u = 1/2"`.
+    pub first: String,
+    /// The line of the second patch (in its own `(u, v)`).
+    pub second: String,
+    /// The plane's unit normal (f64).
+    pub normal: [f64; 3],
+    /// The plane's offset along it (`normal · x = offset`).
+    pub offset: f64,
+}
+
 /// The bitangents of one pair of patches.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct PairBitangents {
@@ -157,6 +175,9 @@ pub struct PairBitangents {
     pub unresolved: Vec<BitangentUnresolved>,
     /// The exact singular points found, with their branches where decided.
     pub singular_points: Vec<BitangentSingular>,
+    /// The 2-dimensional sets of pairs found through the singular points: planes tangent to
+    /// both patches along lines.
+    pub plane_sets: Vec<BitangentPlaneSet>,
     /// Boxes examined.
     pub boxes: usize,
     /// Boxes recomputed exactly.
@@ -198,6 +219,25 @@ impl BitangentCurves {
     /// Every pair certified.
     pub fn is_certified(&self) -> bool {
         self.pairs.iter().all(PairBitangents::is_certified)
+    }
+}
+
+/// Whether `at` lies in the interval grown by its width on both sides (a box next to a line).
+fn near(interval: &[f64; 2], at: &Rational) -> bool {
+    let (x, w) = (at.to_f64(), interval[1] - interval[0]);
+    interval[0] - w <= x && x <= interval[1] + w
+}
+
+/// The record of a plane tangent along two lines.
+fn plane_set(patches: [usize; 2], l1: &TangentLine, l2: &TangentLine) -> BitangentPlaneSet {
+    let n = l1.normal.clone().map(|c| c.to_f64());
+    let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+    BitangentPlaneSet {
+        patches,
+        first: l1.name(),
+        second: l2.name(),
+        normal: n.map(|c| c / len),
+        offset: l1.offset.to_f64() / len,
     }
 }
 
@@ -328,6 +368,7 @@ pub fn pair_bitangents(
         branches: Vec::new(),
         unresolved: Vec::new(),
         singular_points: Vec::new(),
+        plane_sets: Vec::new(),
         boxes: 0,
         escalations: 0,
         divided_sides: Vec::new(),
@@ -417,11 +458,17 @@ pub fn pair_bitangents(
         BoxVerdict::Solve
     };
     let curve = solve_space_curve_excluding(&eqs, &[], &verdict, &opts);
+    let mut lines: Vec<[Vec<TangentLine>; 2]> = Vec::new();
     out.singular_points = curve
         .singular_points
         .iter()
         .map(|sp| {
             let x = sp.unwarped(&lambdas);
+            lines.push([(first, 0), (second, 2)].map(|(patch, k)| {
+                (0..2)
+                    .filter_map(|axis| tangent_plane_along(patch, axis, &x[k + axis]))
+                    .collect()
+            }));
             let f: Vec<f64> = x.iter().map(Rational::to_f64).collect();
             BitangentSingular {
                 patches: [i, j],
@@ -434,6 +481,16 @@ pub fn pair_bitangents(
             }
         })
         .collect();
+    for [a, b] in &lines {
+        for l1 in a {
+            for l2 in b.iter().filter(|l2| l1.same_plane(l2)) {
+                let set = plane_set([i, j], l1, l2);
+                if !out.plane_sets.contains(&set) {
+                    out.plane_sets.push(set);
+                }
+            }
+        }
+    }
     out.boxes = curve.boxes;
     out.escalations = curve.escalations;
     out.unresolved = curve
@@ -443,11 +500,35 @@ pub fn pair_bitangents(
             let cell: Vec<[f64; 2]> = (0..4)
                 .map(|k| unwarp_interval(u.cell[k], lambda(same, k)))
                 .collect();
+            let reason = lines
+                .iter()
+                .flat_map(|[a, b]| {
+                    a.iter()
+                        .flat_map(move |l1| b.iter().map(move |l2| (l1, l2)))
+                })
+                .find(|(l1, l2)| {
+                    l1.same_plane(l2)
+                        && near(&cell[l1.axis], &l1.at)
+                        && near(&cell[2 + l2.axis], &l2.at)
+                })
+                .filter(|_| u.reason == NO_REGULAR_MINOR || u.reason == UNRESOLVED_SINGULAR)
+                .map_or_else(
+                    || u.reason.clone(),
+                    |(l1, l2)| {
+                        format!(
+                            "next to a 2-dimensional set of bitangent pairs, where no Jacobian \
+                             minor is regular: one plane is tangent to patch {i} along {} and \
+                             to patch {j} along {} (checked exactly; listed in plane_sets)",
+                            l1.name(),
+                            l2.name()
+                        )
+                    },
+                );
             BitangentUnresolved {
                 patches: [i, j],
                 at: centre(&u.cell),
                 cell,
-                reason: u.reason.clone(),
+                reason,
             }
         })
         .collect();
@@ -523,8 +604,8 @@ fn branches(
     let mut edges: Vec<(usize, usize)> = curve.arcs.iter().map(|a| (a.from, a.to)).collect();
     edges.extend(&mirrors);
     // A side of the domain, or a singular point whose branches are proven, ends a branch.
-    let boundary =
-        |v: usize| curve.crossings[v].on_boundary || curve.crossings[v].singular.is_some();
+    let boundary = |v: usize| curve.crossings[v].on_boundary;
+    let branch_point = |v: usize| curve.crossings[v].singular.is_some();
     let point = |v: usize, flipped: bool| -> BitangentPoint {
         let t = curve.crossings[v].point();
         let x: Vec<f64> = (0..4).map(|k| unwarp(t[k], lambda(same, k))).collect();
@@ -550,7 +631,7 @@ fn branches(
         let q = sides[1].jets.image(lo2, hi2)?;
         piece_error(&std::array::from_fn(|k| q[k].sub(&p[k])), &ends)
     };
-    chain(&edges, curve.crossings.len(), &boundary)
+    chain(&edges, curve.crossings.len(), &boundary, &branch_point)
         .into_iter()
         .map(|c| {
             // Across a mirror join the next crossings are the other order of the same pairs.

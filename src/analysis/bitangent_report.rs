@@ -1,7 +1,9 @@
 //! The report of `limn curves --kind bitangent`: JSON (field names are a public contract, see
 //! README), text, SVG (projected along a view direction) and OBJ polylines.
 
-use super::bitangent_curves::{BitangentCurves, BitangentSingular, BitangentUnresolved};
+use super::bitangent_curves::{
+    BitangentCurves, BitangentPlaneSet, BitangentSingular, BitangentUnresolved,
+};
 use super::render::{
     curves_svg, obj_polyline, reason_lines, verdict_lines, Work, INCOMPLETE_STYLE,
 };
@@ -74,6 +76,8 @@ pub struct BitangentReport {
     pub unresolved: Vec<BitangentUnresolved>,
     /// Exact singular points of the curves, with their branches where decided.
     pub singular_points: Vec<BitangentSingular>,
+    /// 2-dimensional sets of pairs: planes tangent to two patches along lines.
+    pub plane_sets: Vec<BitangentPlaneSet>,
     /// Work counts.
     pub stats: BitangentStats,
 }
@@ -113,6 +117,11 @@ impl BitangentReport {
             .iter()
             .flat_map(|p| p.singular_points.iter().cloned())
             .collect();
+        let plane_sets: Vec<BitangentPlaneSet> = r
+            .pairs
+            .iter()
+            .flat_map(|p| p.plane_sets.iter().cloned())
+            .collect();
         let error_bound = tolerance.and_then(|_| {
             r.pairs
                 .iter()
@@ -144,6 +153,7 @@ impl BitangentReport {
             curves,
             unresolved,
             singular_points,
+            plane_sets,
         }
     }
 
@@ -175,6 +185,19 @@ impl BitangentReport {
             }),
             "pairs",
         );
+        for p in &self.plane_sets {
+            out += &format!(
+                "  pair {}-{}: every pair of points of {} and {} is bitangent (the plane {:.6} x + {:.6} y + {:.6} z = {:.6} is tangent along both, checked exactly)\n",
+                p.patches[0],
+                p.patches[1],
+                p.first,
+                p.second,
+                p.normal[0],
+                p.normal[1],
+                p.normal[2],
+                p.offset
+            );
+        }
         for p in &self.singular_points {
             out += &format!(
                 "  pair {}-{}: singular point at (u, v, s, t) = ({}) exactly, {}\n",

@@ -479,9 +479,9 @@ fn join_charts<'a>(cu: &'a SpaceCurve, cv: &'a SpaceCurve) -> Joined<'a> {
     // crossing or an unresolved box does not.
     let side = |v: usize| {
         let c = all[v].1;
-        (c.on_boundary && c.axis != 2) || c.singular.is_some()
+        c.on_boundary && c.axis != 2
     };
-    chain(&edges, all.len(), &side)
+    chain(&edges, all.len(), &side, &|v| all[v].1.singular.is_some())
         .into_iter()
         .map(|c| {
             let vertices = c.vertices.into_iter().map(|v| all[v]).collect();

@@ -21,5 +21,6 @@ pub mod ray;
 pub mod render;
 pub mod silhouette;
 pub mod silhouette_certificate;
+pub mod tangent_lines;
 pub mod vec3;
 pub mod visible;

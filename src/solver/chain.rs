@@ -11,28 +11,35 @@ pub(crate) struct Chain {
     pub edges: Vec<usize>,
     /// The last vertex joins the first.
     pub closed: bool,
-    /// Closed with every vertex of degree 2 or on the boundary, or open with both ends on
-    /// the boundary (`boundary`: a side of the domain, or a proven branch point where several
-    /// chains meet): nothing of the curve is missing at its ends.
+    /// Closed with every vertex of degree 2 or a branch point, or open with both ends on the
+    /// boundary (of degree 1) or at branch points: nothing of the curve is missing at its ends.
     pub complete: bool,
 }
 
 /// Chains the edges (vertex pairs, vertices `0..vertices`) through vertices of degree 2:
-/// open chains first, from the vertices of degree 1 or of 3 and more in increasing order (a
-/// chain from a vertex of degree 3 or more may come back to it: closed), then the closed ones.
+/// open chains first, from the vertices of degree 1 and the branch points of degree other
+/// than 2, in increasing order (a chain from a branch point may come back to it: closed), then
+/// the closed ones. `boundary` says which vertices lie on the domain's boundary (an end of
+/// degree 1 there is complete), `branch_point` which are proven points where several chains
+/// meet (a singular point whose branches are decided: an end there is complete).
 pub(crate) fn chain(
     edges: &[(usize, usize)],
     vertices: usize,
     boundary: &dyn Fn(usize) -> bool,
+    branch_point: &dyn Fn(usize) -> bool,
 ) -> Vec<Chain> {
     let mut incident: Vec<Vec<usize>> = vec![Vec::new(); vertices];
     for (i, &(a, b)) in edges.iter().enumerate() {
         incident[a].push(i);
         incident[b].push(i);
     }
+    let degree = |v: usize| incident[v].len();
+    let end_complete =
+        |v: usize| (boundary(v) && degree(v) == 1) || (branch_point(v) && degree(v) != 2);
     let mut used = vec![false; edges.len()];
     let mut chains = Vec::new();
-    for end in (0..vertices).filter(|&v| !incident[v].is_empty() && incident[v].len() != 2) {
+    let starts = (0..vertices).filter(|&v| degree(v) == 1 || (branch_point(v) && degree(v) > 2));
+    for end in starts {
         for k in 0..incident[end].len() {
             let first = incident[end][k];
             if used[first] {
@@ -40,7 +47,7 @@ pub(crate) fn chain(
             }
             let (vertices, walked, last) = walk(edges, &incident, &mut used, end, first);
             let closed = last == end;
-            let complete = boundary(end) && boundary(last) && incident[last].len() != 2;
+            let complete = end_complete(end) && end_complete(last);
             chains.push(Chain {
                 vertices,
                 edges: walked,
@@ -56,10 +63,7 @@ pub(crate) fn chain(
         let start = edges[i].0;
         let (vertices, walked, last) = walk(edges, &incident, &mut used, start, i);
         let closed = last == start;
-        let complete = closed
-            && vertices
-                .iter()
-                .all(|&v| incident[v].len() == 2 || boundary(v));
+        let complete = closed && vertices.iter().all(|&v| degree(v) == 2 || branch_point(v));
         chains.push(Chain {
             vertices,
             edges: walked,
@@ -112,7 +116,7 @@ mod tests {
         // 0-1-2 with 0 and 2 on the boundary; 3-4-5-3 a triangle; 6-7 with 7 not on it.
         let edges = [(0, 1), (1, 2), (3, 4), (4, 5), (5, 3), (6, 7)];
         let boundary = |v: usize| v != 7;
-        let c = chain(&edges, 8, &boundary);
+        let c = chain(&edges, 8, &boundary, &|_| false);
         assert_eq!(c.len(), 3);
         assert_eq!(
             (c[0].vertices.clone(), c[0].closed, c[0].complete),
@@ -142,15 +146,15 @@ mod tests {
             (6, 7),
             (7, 0),
         ];
-        let boundary = |v: usize| v <= 4;
-        let c = chain(&edges, 8, &boundary);
+        let boundary = |v: usize| (1..=4).contains(&v);
+        let c = chain(&edges, 8, &boundary, &|v| v == 0);
         assert_eq!(c.len(), 5);
         assert!(c.iter().all(|x| x.complete), "{c:?}");
         assert_eq!(c[0].vertices, vec![0, 5, 1]);
         let lp = c.iter().find(|x| x.closed).unwrap();
         assert_eq!(lp.vertices, vec![0, 6, 7]);
-        // Not a branch point: the arms are not complete there.
-        let c = chain(&edges, 8, &|v: usize| (1..=4).contains(&v));
+        // Not a branch point (even on the boundary): the arms are not complete there.
+        let c = chain(&edges, 8, &|v: usize| v <= 4, &|_| false);
         assert!(c.iter().all(|x| !x.complete));
     }
 }

@@ -993,12 +993,14 @@ pub(crate) fn chain(arcs: &[Arc]) -> Vec<Branch> {
         .iter()
         .map(|a| (index(&a.from), index(&a.to)))
         .collect();
-    super::chain::chain(&edges, ids.len(), &|v| on_square_boundary(&ids[v]))
-        .into_iter()
-        .map(|c| Branch {
-            crossings: c.vertices.into_iter().map(|v| ids[v]).collect(),
-            closed: c.closed,
-            complete: c.complete,
-        })
-        .collect()
+    super::chain::chain(&edges, ids.len(), &|v| on_square_boundary(&ids[v]), &|_| {
+        false
+    })
+    .into_iter()
+    .map(|c| Branch {
+        crossings: c.vertices.into_iter().map(|v| ids[v]).collect(),
+        closed: c.closed,
+        complete: c.complete,
+    })
+    .collect()
 }

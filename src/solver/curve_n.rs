@@ -1217,21 +1217,24 @@ pub fn solve_space_curve_excluding(
     if !solver.singular.is_empty() {
         solver.partials = Some(HigherPartials::new(&eqs));
     }
+    // Per singular point, its number of branches where its star was decided (a later star
+    // moves the leaves' crossings, so centres are found by their mark after naming).
     let mut starred = vec![None; solver.singular.len()];
     for (k, star) in starred.iter_mut().enumerate() {
         *star = star_around(&mut solver, k, &eqs, &mut out, &mut leaves);
     }
-    let named = assemble(&mut out, leaves.crossings, leaves.arcs);
+    assemble(&mut out, leaves.crossings, leaves.arcs);
     out.singular_points = solver
         .singular
         .iter()
         .zip(starred)
-        .map(|(sp, star)| SpaceSingularPoint {
+        .enumerate()
+        .map(|(k, (sp, branches))| SpaceSingularPoint {
             exact: sp.exact_strings(),
             values: sp.exact.clone(),
             point: sp.point(),
-            crossing: star.map(|(c, _)| named[c]),
-            branches: star.map(|(_, b)| b),
+            crossing: out.crossings.iter().position(|c| c.singular == Some(k)),
+            branches,
         })
         .collect();
     out
@@ -1248,41 +1251,45 @@ struct Leaves {
 }
 
 /// Decides the box around the singular point `k` by the star test (§6), from the smallest
-/// depth where it succeeds (and, with a tolerance, its arcs are accurate, or the depth is the
-/// deepest undecided box's around the point) down: the leaves inside it are replaced by its
-/// arcs. The star's centre (raw crossing index) and its number of branches.
+/// depth where it succeeds (and, with a tolerance, its arcs are accurate, or the box is the
+/// smallest allowed) down: the leaves inside it are replaced by its arcs. The star's number of
+/// branches.
 fn star_around(
     solver: &mut Solver,
     k: usize,
     eqs: &[Bernstein<Rational>],
     out: &mut SpaceCurve,
     leaves: &mut Leaves,
-) -> Option<(usize, usize)> {
-    let sp = &solver.singular[k];
-    let p = sp.point();
-    let holds_p = |cell: &[[f64; 2]]| cell.iter().zip(&p).all(|(b, x)| b[0] <= *x && *x <= b[1]);
+) -> Option<usize> {
+    let exact = solver.singular[k].exact.clone();
+    // Exact comparisons (the leaves' sides are dyadic, exact in f64).
+    let holds_p = |cell: &[[f64; 2]]| {
+        cell.iter().zip(&exact).all(|(b, x)| {
+            let lo = Rational::from_f64(b[0]).expect("finite");
+            let hi = Rational::from_f64(b[1]).expect("finite");
+            lo <= *x && *x <= hi
+        })
+    };
     let width = |cell: &[[f64; 2]]| cell[0][1] - cell[0][0];
-    // The undecided leaves around the point, and the smallest (no box of the star may be
-    // smaller than a leaf that holds the point, which it would have to cut).
-    let around: Vec<f64> = out
+    // No box of the star may be smaller than an undecided leaf that holds the point (it would
+    // cut that leaf): the largest such leaf bounds the depth.
+    let largest = out
         .unresolved
         .iter()
         .filter(|u| holds_p(&u.cell))
         .map(|u| width(&u.cell))
-        .collect();
-    let smallest = around.iter().copied().fold(f64::INFINITY, f64::min);
-    let largest = around.iter().copied().fold(0.0, f64::max);
-    if around.is_empty() {
+        .fold(0.0, f64::max);
+    if largest == 0.0 {
         return None;
     }
-    let exact = sp.exact.clone();
-    for depth in STAR_MIN_DEPTH..=solver.opts.max_depth {
-        if depth > 60 || (-(depth as f64)).exp2() < smallest {
-            break;
-        }
-        // A leaf that holds the point and is larger than this box (decided with a smaller
-        // budget, say) cannot be cut.
-        if (-(depth as f64)).exp2() < largest {
+    for depth in STAR_MIN_DEPTH..=solver.opts.max_depth.min(60) {
+        let side = (-f64::from(depth)).exp2();
+        if side < largest
+            || solver
+                .opts
+                .deadline
+                .is_some_and(|d| std::time::Instant::now() >= d)
+        {
             break;
         }
         // The dyadic box of this depth around the point.
@@ -1322,7 +1329,7 @@ fn star_around(
         else {
             continue;
         };
-        let deepest = (-(depth as f64 + 1.0)).exp2() < smallest;
+        let deepest = 0.5 * side < largest;
         if !accurate && !deepest {
             continue;
         }
@@ -1343,7 +1350,7 @@ fn star_around(
             });
         }
         leaves.crossings.extend(crossings);
-        return Some((c, count));
+        return Some(count);
     }
     // Not decided: the undecided boxes that hold the point say so.
     for u in out.unresolved.iter_mut().filter(|u| holds_p(&u.cell)) {
@@ -1388,11 +1395,12 @@ fn overlaps(a: &[[f64; 2]], b: &[[f64; 2]]) -> bool {
 }
 
 /// The reason of a box the graph test could not decide for want of a regular minor.
-const NO_REGULAR_MINOR: &str = "no Jacobian minor is proven regular (near a singular point of the \
+pub const NO_REGULAR_MINOR: &str =
+    "no Jacobian minor is proven regular (near a singular point of the \
                                 curve, or where its equations are nearly dependent)";
 
 /// The reason of a box around a known singular point that the star test did not decide.
-const UNRESOLVED_SINGULAR: &str = "holds an exact singular point of the curve (listed in \
+pub const UNRESOLVED_SINGULAR: &str = "holds an exact singular point of the curve (listed in \
                                    singular_points) whose branches were not resolved";
 
 /// The star test is tried on boxes around a singular point from this depth on.
@@ -1644,18 +1652,19 @@ fn assemble(out: &mut SpaceCurve, raw: Vec<RawCrossing>, arcs: Vec<RawArc>) -> V
         .collect();
     let edges: Vec<(usize, usize)> = out.arcs.iter().map(|a| (a.from, a.to)).collect();
     // A branch ending at a singular point whose star was decided is complete there.
-    let boundary: Vec<bool> = out
-        .crossings
-        .iter()
-        .map(|c| c.on_boundary || c.singular.is_some())
-        .collect();
-    out.branches = super::chain::chain(&edges, out.crossings.len(), &|v| boundary[v])
-        .into_iter()
-        .map(|c| SpaceBranch {
-            crossings: c.vertices,
-            closed: c.closed,
-            complete: c.complete,
-        })
-        .collect();
+    let crossings = &out.crossings;
+    out.branches = super::chain::chain(
+        &edges,
+        crossings.len(),
+        &|v| crossings[v].on_boundary,
+        &|v| crossings[v].singular.is_some(),
+    )
+    .into_iter()
+    .map(|c| SpaceBranch {
+        crossings: c.vertices,
+        closed: c.closed,
+        complete: c.complete,
+    })
+    .collect();
     named
 }

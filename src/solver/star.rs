@@ -360,7 +360,12 @@ pub(crate) fn star_branches(
         return Err("the tangent cone at the singular point is not transversal");
     }
     let n = lo.len();
-    let remainder = Remainder::over_box(sp, partials, lo, hi);
+    // The facets below reach up to an ulp outside B − p (outward rounding), so the Lagrange
+    // points may leave B by as much: the ranges are taken over B grown by a few ulps.
+    let grow = |x: f64| 4.0 * f64::EPSILON * (1.0 + x.abs());
+    let lo_grown: Vec<f64> = lo.iter().map(|&x| x - grow(x)).collect();
+    let hi_grown: Vec<f64> = hi.iter().map(|&x| x + grow(x)).collect();
+    let remainder = Remainder::over_box(sp, partials, &lo_grown, &hi_grown);
     // The facets w_axis = (side − p_axis); none where p lies on that side.
     let mut facets = Vec::new();
     for axis in 0..n {
@@ -371,11 +376,22 @@ pub(crate) fn star_branches(
                 continue;
             }
             let offset = |k: usize, x: f64| Interval::point(x).sub(&sp.at[k]);
+            // Rounded outward (the pieces cover the facet) and inward (a branch is claimed
+            // only where its image lies inside the true facet).
             let mut facet: Vec<Interval> = (0..n)
                 .map(|k| Interval::new(offset(k, lo[k]).lo(), offset(k, hi[k]).hi()))
                 .collect();
+            let mut inner: Vec<[f64; 2]> = (0..n)
+                .map(|k| [offset(k, lo[k]).hi(), offset(k, hi[k]).lo()])
+                .collect();
             facet[axis] = offset(axis, side);
-            facets.push((axis, upper, facet));
+            inner[axis] = [f64::NEG_INFINITY, f64::INFINITY];
+            facets.push(Facet {
+                axis,
+                upper,
+                pieces: facet,
+                inner,
+            });
         }
     }
     facet_search(sp, &remainder, facets)
@@ -405,7 +421,12 @@ fn cone_is_transversal(sp: &SingularPoint) -> bool {
             [false, true].map(|upper| {
                 let mut w = vec![Interval::new(-1.25, 1.3125); n];
                 w[axis] = Interval::point(if upper { 1.0 } else { -1.0 });
-                (axis, upper, w)
+                Facet {
+                    axis,
+                    upper,
+                    pieces: w,
+                    inner: vec![[f64::NEG_INFINITY, f64::INFINITY]; n],
+                }
             })
         })
         .collect();
@@ -481,20 +502,35 @@ fn jac_enclosure(
 
 /// Decides the facet pieces by exclusion and Krawczyk's test in `w`, with `H` and its
 /// Jacobian enclosed for every `r` in the remainder's range.
-fn facet_search(
-    sp: &SingularPoint,
-    rem: &Remainder,
-    facets: Vec<(usize, bool, Vec<Interval>)>,
-) -> StarResult {
+/// A facet `{w_axis = c}` of `B − p` to search: the box its pieces cover (rounded outward),
+/// and the bounds inside which an image must lie for a branch to be claimed (rounded inward).
+struct Facet {
+    axis: usize,
+    upper: bool,
+    pieces: Vec<Interval>,
+    inner: Vec<[f64; 2]>,
+}
+
+fn facet_search(sp: &SingularPoint, rem: &Remainder, facets: Vec<Facet>) -> StarResult {
     let h_of = |w: &[Interval]| h_enclosure(sp, rem, w);
     let jac_of = |w: &[Interval], free: &[usize]| jac_enclosure(sp, rem, w, free);
     let undecided =
         "the boundary of the box around the singular point was not decided within the budget";
     let mut branches = Vec::new();
     let mut examined = 0usize;
-    for (axis, upper, facet) in facets {
-        let free: Vec<usize> = (0..facet.len()).filter(|&k| k != axis).collect();
-        let mut stack = vec![facet];
+    for Facet {
+        axis,
+        upper,
+        pieces,
+        inner,
+    } in facets
+    {
+        let free: Vec<usize> = (0..pieces.len()).filter(|&k| k != axis).collect();
+        let inside_facet = |image: &[Interval]| {
+            free.iter()
+                .all(|&k| inner[k][0] < image[k].lo() && image[k].hi() < inner[k][1])
+        };
+        let mut stack = vec![pieces];
         while let Some(w) = stack.pop() {
             examined += 1;
             if examined > STAR_BUDGET {
@@ -505,7 +541,7 @@ fn facet_search(
             }
             match krawczyk_facet(&w, &free, &h_of, &jac_of) {
                 FacetVerdict::NoZero => continue,
-                FacetVerdict::Unique(image) => {
+                FacetVerdict::Unique(image) if inside_facet(&image) => {
                     branches.push(StarBranch {
                         axis,
                         upper,
@@ -514,7 +550,7 @@ fn facet_search(
                     });
                     continue;
                 }
-                FacetVerdict::Unknown => {}
+                FacetVerdict::Unique(_) | FacetVerdict::Unknown => {}
             }
             // Bisect the widest free coordinate.
             let k = *free
