@@ -5,7 +5,7 @@ use super::bitangent_curves::{
     BitangentCurves, BitangentPlaneSet, BitangentSingular, BitangentUnresolved,
 };
 use super::render::{
-    curves_svg, obj_polyline, reason_lines, verdict_lines, Work, INCOMPLETE_STYLE,
+    curves_svg, gather, obj_polyline, reason_lines, verdict_lines, Work, INCOMPLETE_STYLE,
 };
 use super::silhouette::View;
 use crate::model::Model;
@@ -107,21 +107,9 @@ impl BitangentReport {
                 normals: b.points.iter().map(|p| p.normal).collect(),
             })
             .collect();
-        let unresolved: Vec<BitangentUnresolved> = r
-            .pairs
-            .iter()
-            .flat_map(|p| p.unresolved.iter().cloned())
-            .collect();
-        let singular_points: Vec<BitangentSingular> = r
-            .pairs
-            .iter()
-            .flat_map(|p| p.singular_points.iter().cloned())
-            .collect();
-        let plane_sets: Vec<BitangentPlaneSet> = r
-            .pairs
-            .iter()
-            .flat_map(|p| p.plane_sets.iter().cloned())
-            .collect();
+        let unresolved: Vec<BitangentUnresolved> = gather(&r.pairs, |p| &p.unresolved);
+        let singular_points: Vec<BitangentSingular> = gather(&r.pairs, |p| &p.singular_points);
+        let plane_sets: Vec<BitangentPlaneSet> = gather(&r.pairs, |p| &p.plane_sets);
         let error_bound = tolerance.and_then(|_| {
             r.pairs
                 .iter()

@@ -3,7 +3,7 @@
 
 use super::flecnodal_curves::{FlecnodalCurves, FlecnodalSingular, FlecnodalUnresolved};
 use super::render::{
-    curves_svg, obj_polyline, reason_lines, verdict_lines, Work, INCOMPLETE_STYLE,
+    curves_svg, gather, obj_polyline, reason_lines, verdict_lines, Work, INCOMPLETE_STYLE,
 };
 use super::silhouette::View;
 use crate::model::Model;
@@ -118,16 +118,8 @@ impl FlecnodalReport {
                 lines: b.points.iter().map(|p| p.line).collect(),
             })
             .collect();
-        let unresolved: Vec<FlecnodalUnresolved> = r
-            .patches
-            .iter()
-            .flat_map(|p| p.unresolved.iter().cloned())
-            .collect();
-        let singular_points: Vec<FlecnodalSingular> = r
-            .patches
-            .iter()
-            .flat_map(|p| p.singular_points.iter().cloned())
-            .collect();
+        let unresolved: Vec<FlecnodalUnresolved> = gather(&r.patches, |p| &p.unresolved);
+        let singular_points: Vec<FlecnodalSingular> = gather(&r.patches, |p| &p.singular_points);
         let degenerate: Vec<DegeneratePatch> = r
             .patches
             .iter()

@@ -569,3 +569,12 @@ pub(crate) fn curves_svg(
     let marks: Vec<[f64; 2]> = marks.iter().map(|m| proj.project(*m)).collect();
     svg_document(title, &all, &marks)
 }
+
+/// The items of one list field of every element, in order (the per-patch or per-pair lists of
+/// a report, flattened).
+pub(crate) fn gather<T, U: Clone>(items: &[T], field: impl Fn(&T) -> &[U]) -> Vec<U> {
+    items
+        .iter()
+        .flat_map(|x| field(x).iter().cloned())
+        .collect()
+}
