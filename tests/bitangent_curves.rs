@@ -317,3 +317,39 @@ fn the_teapots_rim_top_is_a_plane_of_bitangent_pairs() {
         }
     }
 }
+
+#[test]
+fn a_plane_found_through_one_pair_explains_the_others() {
+    // The rim alone (patches 0-3): the plane z = 2.4984375 on the top circle u = 1/2 is found
+    // through the singular points of the neighbouring pairs; the opposite pairs 0-2 and 1-3,
+    // where the search finds none, get it from the model's lines.
+    let teapot = limn::testing::teapot();
+    let rim = Model::from_patches(
+        Format::Bpt,
+        teapot.patches[..4]
+            .iter()
+            .map(|p| p.surface.clone())
+            .collect(),
+    );
+    let started = std::time::Instant::now();
+    let out = bitangent_curves(&rim, &BitangentOptions::default());
+    eprintln!("rim: {:?}", started.elapsed());
+    for pair in &out.pairs {
+        let set = pair
+            .plane_sets
+            .iter()
+            .find(|s| s.first == "u = 1/2" && s.second == "u = 1/2");
+        assert!(set.is_some(), "{:?}: {:#?}", pair.patches, pair.plane_sets);
+        let generic = pair
+            .unresolved
+            .iter()
+            .filter(|u| u.reason.starts_with("no Jacobian minor"))
+            .count();
+        eprintln!(
+            "{:?}: {} unresolved, {generic} generic",
+            pair.patches,
+            pair.unresolved.len()
+        );
+        assert_eq!(generic, 0, "{:?}", pair.patches);
+    }
+}

@@ -178,6 +178,10 @@ pub struct PairBitangents {
     /// The 2-dimensional sets of pairs found through the singular points: planes tangent to
     /// both patches along lines.
     pub plane_sets: Vec<BitangentPlaneSet>,
+    /// The lines of the first and of the second patch along which a plane is tangent, found
+    /// through the singular points (a model shares them among its pairs).
+    #[serde(skip)]
+    pub tangent_lines: [Vec<TangentLine>; 2],
     /// Boxes examined.
     pub boxes: usize,
     /// Boxes recomputed exactly.
@@ -219,6 +223,36 @@ impl BitangentCurves {
     /// Every pair certified.
     pub fn is_certified(&self) -> bool {
         self.pairs.iter().all(PairBitangents::is_certified)
+    }
+}
+
+/// Records the planes tangent to both patches of a pair along the given lines of each
+/// (`lines[0]` of the first patch, `lines[1]` of the second), and gives the undecided boxes next
+/// to such a set (for want of a regular minor) the set as their reason.
+fn explain_plane_sets(out: &mut PairBitangents, lines: &[Vec<TangentLine>; 2]) {
+    let [i, j] = out.patches;
+    for l1 in &lines[0] {
+        for l2 in lines[1].iter().filter(|l2| l1.same_plane(l2)) {
+            let set = plane_set([i, j], l1, l2);
+            if out.plane_sets.contains(&set) {
+                continue;
+            }
+            out.plane_sets.push(set);
+            let reason = format!(
+                "next to a 2-dimensional set of bitangent pairs, where no Jacobian minor is \
+                 regular: one plane is tangent to patch {i} along {} and to patch {j} along {} \
+                 (checked exactly; listed in plane_sets)",
+                l1.name(),
+                l2.name()
+            );
+            for u in out.unresolved.iter_mut().filter(|u| {
+                (u.reason == NO_REGULAR_MINOR || u.reason == UNRESOLVED_SINGULAR)
+                    && near(&u.cell[l1.axis], &l1.at)
+                    && near(&u.cell[2 + l2.axis], &l2.at)
+            }) {
+                u.reason.clone_from(&reason);
+            }
+        }
     }
 }
 
@@ -369,6 +403,7 @@ pub fn pair_bitangents(
         unresolved: Vec::new(),
         singular_points: Vec::new(),
         plane_sets: Vec::new(),
+        tangent_lines: [Vec::new(), Vec::new()],
         boxes: 0,
         escalations: 0,
         divided_sides: Vec::new(),
@@ -458,17 +493,21 @@ pub fn pair_bitangents(
         BoxVerdict::Solve
     };
     let curve = solve_space_curve_excluding(&eqs, &[], &verdict, &opts);
-    let mut lines: Vec<[Vec<TangentLine>; 2]> = Vec::new();
+    let mut lines: [Vec<TangentLine>; 2] = [Vec::new(), Vec::new()];
     out.singular_points = curve
         .singular_points
         .iter()
         .map(|sp| {
             let x = sp.unwarped(&lambdas);
-            lines.push([(first, 0), (second, 2)].map(|(patch, k)| {
-                (0..2)
-                    .filter_map(|axis| tangent_plane_along(patch, axis, &x[k + axis]))
-                    .collect()
-            }));
+            for (side, (patch, k)) in [(first, 0), (second, 2)].into_iter().enumerate() {
+                for axis in 0..2 {
+                    if let Some(l) = tangent_plane_along(patch, axis, &x[k + axis]) {
+                        if !lines[side].contains(&l) {
+                            lines[side].push(l);
+                        }
+                    }
+                }
+            }
             let f: Vec<f64> = x.iter().map(Rational::to_f64).collect();
             BitangentSingular {
                 patches: [i, j],
@@ -481,16 +520,6 @@ pub fn pair_bitangents(
             }
         })
         .collect();
-    for [a, b] in &lines {
-        for l1 in a {
-            for l2 in b.iter().filter(|l2| l1.same_plane(l2)) {
-                let set = plane_set([i, j], l1, l2);
-                if !out.plane_sets.contains(&set) {
-                    out.plane_sets.push(set);
-                }
-            }
-        }
-    }
     out.boxes = curve.boxes;
     out.escalations = curve.escalations;
     out.unresolved = curve
@@ -500,38 +529,16 @@ pub fn pair_bitangents(
             let cell: Vec<[f64; 2]> = (0..4)
                 .map(|k| unwarp_interval(u.cell[k], lambda(same, k)))
                 .collect();
-            let reason = lines
-                .iter()
-                .flat_map(|[a, b]| {
-                    a.iter()
-                        .flat_map(move |l1| b.iter().map(move |l2| (l1, l2)))
-                })
-                .find(|(l1, l2)| {
-                    l1.same_plane(l2)
-                        && near(&cell[l1.axis], &l1.at)
-                        && near(&cell[2 + l2.axis], &l2.at)
-                })
-                .filter(|_| u.reason == NO_REGULAR_MINOR || u.reason == UNRESOLVED_SINGULAR)
-                .map_or_else(
-                    || u.reason.clone(),
-                    |(l1, l2)| {
-                        format!(
-                            "next to a 2-dimensional set of bitangent pairs, where no Jacobian \
-                             minor is regular: one plane is tangent to patch {i} along {} and \
-                             to patch {j} along {} (checked exactly; listed in plane_sets)",
-                            l1.name(),
-                            l2.name()
-                        )
-                    },
-                );
             BitangentUnresolved {
                 patches: [i, j],
                 at: centre(&u.cell),
                 cell,
-                reason,
+                reason: u.reason.clone(),
             }
         })
         .collect();
+    explain_plane_sets(&mut out, &lines);
+    out.tangent_lines = lines;
     if let (Some([a, b]), Some(t)) = (&accuracy, options.tolerance) {
         let bound = curve
             .arcs
@@ -692,10 +699,26 @@ pub fn bitangent_curves(model: &Model, opts: &BitangentOptions) -> BitangentCurv
         .map(|p| DiagonalTest::new(p).excludes([0.0, 0.0], [1.0, 1.0]))
         .collect();
     todo.retain(|&(i, j)| i != j || !excluded[i]);
-    let pairs = todo
+    let mut pairs: Vec<PairBitangents> = todo
         .par_iter()
         .map(|&(i, j)| pair_bitangents(patches[i], i, patches[j], j, opts))
         .collect();
+    // A line along which a plane is tangent, found through one pair, serves every pair of its
+    // patch: the sets a pair's own singular points missed (the rim's opposite patches).
+    let mut lines: Vec<Vec<TangentLine>> = vec![Vec::new(); patches.len()];
+    for p in &pairs {
+        for (side, &k) in p.patches.iter().enumerate() {
+            for l in &p.tangent_lines[side] {
+                if !lines[k].contains(l) {
+                    lines[k].push(l.clone());
+                }
+            }
+        }
+    }
+    for p in pairs.iter_mut() {
+        let [i, j] = p.patches;
+        explain_plane_sets(p, &[lines[i].clone(), lines[j].clone()]);
+    }
     BitangentCurves {
         patches: patches.len(),
         pairs,
