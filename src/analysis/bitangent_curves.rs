@@ -158,9 +158,9 @@ pub struct BitangentPlaneSet {
     pub first: String,
     /// The line of the second patch (in its own `(u, v)`).
     pub second: String,
-    /// The plane's unit normal (f64).
+    /// The plane's unit normal (f64), oriented so that the offset is nonnegative.
     pub normal: [f64; 3],
-    /// The plane's offset along it (`normal · x = offset`).
+    /// The plane's offset along it (`normal · x = offset`, `offset ≥ 0`).
     pub offset: f64,
 }
 
@@ -265,12 +265,15 @@ fn near(interval: &[f64; 2], at: &Rational) -> bool {
 /// The record of a plane tangent along two lines.
 fn plane_set(patches: [usize; 2], l1: &TangentLine, l2: &TangentLine) -> BitangentPlaneSet {
     let n = l1.normal.clone().map(|c| c.to_f64());
+    // Unit length, with the sign that makes the offset nonnegative.
     let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+    let len = if l1.offset < 0 { -len } else { len };
     BitangentPlaneSet {
         patches,
         first: l1.name(),
         second: l2.name(),
-        normal: n.map(|c| c / len),
+        // (+ 0.0 turns a −0 into 0.)
+        normal: n.map(|c| c / len + 0.0),
         offset: l1.offset.to_f64() / len,
     }
 }

@@ -186,7 +186,17 @@ impl BitangentReport {
                 p.offset
             );
         }
-        for p in &self.singular_points {
+        // Singular points on a plane set are explained by it: counted, not listed.
+        let on_sets = |p: &BitangentSingular| {
+            p.branches.is_none() && self.plane_sets.iter().any(|s| s.patches == p.patches)
+        };
+        let explained = self.singular_points.iter().filter(|p| on_sets(p)).count();
+        if explained > 0 {
+            out += &format!(
+                "  {explained} exact singular points lie on these sets (listed in the JSON)\n"
+            );
+        }
+        for p in self.singular_points.iter().filter(|p| !on_sets(p)) {
             out += &format!(
                 "  pair {}-{}: singular point at (u, v, s, t) = ({}) exactly, {}\n",
                 p.patches[0],
