@@ -228,7 +228,8 @@ impl BitangentCurves {
 
 /// Records the planes tangent to both patches of a pair along the given lines of each
 /// (`lines[0]` of the first patch, `lines[1]` of the second), and gives the undecided boxes next
-/// to such a set (for want of a regular minor) the set as their reason.
+/// to such a set (for want of a regular minor) the set as their reason
+/// (`proofs/bitangent.md`, Lemma 6).
 fn explain_plane_sets(out: &mut PairBitangents, lines: &[Vec<TangentLine>; 2]) {
     let [i, j] = out.patches;
     for l1 in &lines[0] {
