@@ -5,7 +5,7 @@
 //! timed run each).
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use limn::analysis::bitangent_curves::{bitangent_curves, pair_bitangents, BitangentOptions};
+use limn::analysis::bitangent::curves::{bitangent_curves, pair_bitangents, BitangentOptions};
 use limn::number::Rational;
 use limn::testing::shapes;
 

@@ -5,8 +5,8 @@
 //! printed once) and the whole teapot's topology on 1 and 2 threads (one timed run each).
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use limn::analysis::flecnodal::{flecnodal_system, Chart};
-use limn::analysis::flecnodal_curves::{flecnodal_curves, patch_flecnodal, FlecnodalOptions};
+use limn::analysis::flecnodal::curves::{flecnodal_curves, patch_flecnodal, FlecnodalOptions};
+use limn::analysis::flecnodal::system::{flecnodal_system, Chart};
 
 fn benches(c: &mut Criterion) {
     let teapot = limn::testing::teapot();

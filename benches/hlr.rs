@@ -6,7 +6,7 @@
 //! with and without clusters, one run each on 2 threads (`LIMN_BENCH_SPRING=1`; minutes).
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use limn::analysis::hlr::{hidden_lines, HlrOptions};
+use limn::analysis::visibility::hlr::{hidden_lines, HlrOptions};
 use limn::model::{Format, Model, WeldTolerance};
 use limn::number::Rational;
 use limn::testing::shapes;

@@ -3,9 +3,10 @@
 //! functions (the part shared by every run).
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use limn::analysis::parabolic::{parabolic, parabolic_function};
+use limn::analysis::contour::parabolic::{parabolic, parabolic_function};
 use limn::model::WeldTolerance;
 use limn::solver::CurveOptions;
+use limn::ContourOptions;
 
 fn benches(c: &mut Criterion) {
     let teapot = limn::testing::teapot();
@@ -19,11 +20,27 @@ fn benches(c: &mut Criterion) {
             .build()
             .unwrap();
         g.bench_function(format!("teapot-tol-1e-6-{threads}-threads"), |b| {
-            b.iter(|| pool.install(|| parabolic(&teapot, &opts, WeldTolerance::Exact, Some(tol))))
+            b.iter(|| {
+                pool.install(|| {
+                    parabolic(
+                        &teapot,
+                        &ContourOptions::new(opts.clone(), WeldTolerance::Exact, Some(tol)),
+                    )
+                    .expect("no error")
+                })
+            })
         });
         if threads == 1 {
             g.bench_function("teapot-topology-1-thread", |b| {
-                b.iter(|| pool.install(|| parabolic(&teapot, &opts, WeldTolerance::Exact, None)))
+                b.iter(|| {
+                    pool.install(|| {
+                        parabolic(
+                            &teapot,
+                            &ContourOptions::new(opts.clone(), WeldTolerance::Exact, None),
+                        )
+                        .expect("no error")
+                    })
+                })
             });
             g.bench_function("teapot-functions-1-thread", |b| {
                 b.iter(|| {

@@ -3,13 +3,15 @@
 //! 1 and 2 threads; writing and independently checking a certificate.
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use limn::analysis::baseline::{baseline_silhouette, BaselineMethod};
-use limn::analysis::silhouette::{silhouette, silhouette_function, View};
-use limn::analysis::silhouette_certificate::{check_silhouette, SilhouetteCertificate};
+use limn::analysis::contour::baseline::{baseline_silhouette, BaselineMethod};
+use limn::analysis::contour::certificate::{check_silhouette, SilhouetteCertificate};
+use limn::analysis::contour::silhouette::{silhouette, silhouette_function};
+use limn::analysis::view::View;
 use limn::model::{Format, Model, WeldTolerance};
 use limn::number::Rational;
 use limn::solver::{solve_curve, CurveOptions};
 use limn::testing::shapes;
+use limn::ContourOptions;
 
 fn dir(x: i64, y: i64, z: i64) -> View {
     View::Direction([Rational::from(x), Rational::from(y), Rational::from(z)])
@@ -25,7 +27,14 @@ fn benches(c: &mut Criterion) {
     let mut g = c.benchmark_group("silhouette");
     g.bench_function("teapot-1,2,3", |b| {
         b.iter(|| {
-            pool.install(|| silhouette(&teapot, &dir(1, 2, 3), &opts, WeldTolerance::Exact, None))
+            pool.install(|| {
+                silhouette(
+                    &teapot,
+                    &dir(1, 2, 3),
+                    &ContourOptions::new(opts.clone(), WeldTolerance::Exact, None),
+                )
+                .expect("a valid view")
+            })
         })
     });
     let patch = &teapot.patches[0].surface;
@@ -39,7 +48,14 @@ fn benches(c: &mut Criterion) {
     let sphere = Model::from_patches(Format::Json, shapes::sphere(&Rational::from(1)));
     g.bench_function("sphere-1,2,3", |b| {
         b.iter(|| {
-            pool.install(|| silhouette(&sphere, &dir(1, 2, 3), &opts, WeldTolerance::Exact, None))
+            pool.install(|| {
+                silhouette(
+                    &sphere,
+                    &dir(1, 2, 3),
+                    &ContourOptions::new(opts.clone(), WeldTolerance::Exact, None),
+                )
+                .expect("a valid view")
+            })
         })
     });
     let torus = Model::from_patches(
@@ -48,7 +64,14 @@ fn benches(c: &mut Criterion) {
     );
     g.bench_function("torus-1,2,3", |b| {
         b.iter(|| {
-            pool.install(|| silhouette(&torus, &dir(1, 2, 3), &opts, WeldTolerance::Exact, None))
+            pool.install(|| {
+                silhouette(
+                    &torus,
+                    &dir(1, 2, 3),
+                    &ContourOptions::new(opts.clone(), WeldTolerance::Exact, None),
+                )
+                .expect("a valid view")
+            })
         })
     });
     g.finish();
@@ -73,10 +96,13 @@ fn traced(c: &mut Criterion) {
                         silhouette(
                             &teapot,
                             &dir(1, 2, 3),
-                            &opts,
-                            WeldTolerance::Exact,
-                            Some(tol * diag),
+                            &ContourOptions::new(
+                                opts.clone(),
+                                WeldTolerance::Exact,
+                                Some(tol * diag),
+                            ),
                         )
+                        .expect("a valid view")
                     })
                 })
             });
@@ -93,14 +119,20 @@ fn traced(c: &mut Criterion) {
                 silhouette(
                     &patch0,
                     &dir(1, 2, 3),
-                    &opts,
-                    WeldTolerance::Exact,
-                    Some(1e-6 * diag),
+                    &ContourOptions::new(opts.clone(), WeldTolerance::Exact, Some(1e-6 * diag)),
                 )
+                .expect("a valid view")
             })
         })
     });
-    let s = one.install(|| silhouette(&teapot, &dir(1, 2, 3), &opts, WeldTolerance::Exact, None));
+    let s = one.install(|| {
+        silhouette(
+            &teapot,
+            &dir(1, 2, 3),
+            &ContourOptions::new(opts.clone(), WeldTolerance::Exact, None),
+        )
+        .expect("a valid view")
+    });
     g.bench_function("teapot-1,2,3-certificate", |b| {
         b.iter(|| one.install(|| SilhouetteCertificate::new("teapot", &dir(1, 2, 3), &s)))
     });
@@ -159,10 +191,9 @@ fn mesh_ratio(c: &mut Criterion) {
         silhouette(
             &teapot,
             &view,
-            &opts,
-            WeldTolerance::Exact,
-            Some(1e-6 * diag),
+            &ContourOptions::new(opts.clone(), WeldTolerance::Exact, Some(1e-6 * diag)),
         )
+        .expect("a valid view")
     });
     let reference: Vec<Vec<[f64; 3]>> = reference.curves.iter().map(|c| c.points.clone()).collect();
     let mesh = baseline_silhouette(&teapot, &view, BaselineMethod::Mesh);
@@ -181,7 +212,14 @@ fn mesh_ratio(c: &mut Criterion) {
     });
     g.bench_function("teapot-1,2,3-certified-at-mesh-accuracy", |b| {
         b.iter(|| {
-            one.install(|| silhouette(&teapot, &view, &opts, WeldTolerance::Exact, Some(error)))
+            one.install(|| {
+                silhouette(
+                    &teapot,
+                    &view,
+                    &ContourOptions::new(opts.clone(), WeldTolerance::Exact, Some(error)),
+                )
+                .expect("a valid view")
+            })
         })
     });
     g.finish();

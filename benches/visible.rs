@@ -4,7 +4,7 @@
 //! 3 runs is printed with the bounds on the visible share of the area).
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use limn::analysis::visible::{visible_regions, VisibleOptions};
+use limn::analysis::visibility::visible::{visible_regions, VisibleOptions};
 use limn::model::{Format, Model, WeldTolerance};
 use limn::number::Rational;
 use limn::testing::shapes;

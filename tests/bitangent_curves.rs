@@ -1,7 +1,7 @@
 //! Bitangent curves against closed forms: a double well (a patch with itself, one family of
 //! bitangent planes, both orders of each pair) and two spheres (the cones tangent to both).
 
-use limn::analysis::bitangent_curves::{
+use limn::analysis::bitangent::curves::{
     bitangent_curves, pair_bitangents, BitangentOptions, PairBitangents,
 };
 use limn::model::{Format, Model};
@@ -98,7 +98,7 @@ fn a_shared_side_is_not_mistaken_for_bitangents() {
         let left = shapes::graph(&terms, [q(-1, 1), q(0, 1)], [q(-1, 1), q(1, 1)]);
         let right = shapes::graph(&terms, [q(0, 1), q(1, 1)], [q(-1, 1), q(1, 1)]);
         assert_eq!(
-            limn::analysis::bitangent::shared_sides(&left, &right).len(),
+            limn::analysis::bitangent::system::shared_sides(&left, &right).len(),
             1
         );
         for patches in [vec![left.clone(), right.clone()], vec![right, left]] {

@@ -2,7 +2,10 @@
 //! checker (exact num-rational arithmetic), and mutated certificates (a box moved, a sign
 //! flipped, a crossing moved, a piece dropped, an arc rewired) are rejected.
 
-use limn::analysis::silhouette::{silhouette_function, View};
+use limn::analysis::contour::silhouette::silhouette_function;
+use limn::ContourOptions;
+
+use limn::analysis::view::View;
 use limn::bernstein::Bernstein;
 use limn::model::Format;
 use limn::number::Rational;
@@ -212,8 +215,8 @@ proptest! {
 /// changed coefficient of g, or a wrong divided side, is caught.
 #[test]
 fn model_certificates_check_against_the_model() {
-    use limn::analysis::silhouette::silhouette;
-    use limn::analysis::silhouette_certificate::{check_silhouette, SilhouetteCertificate};
+    use limn::analysis::contour::certificate::{check_silhouette, SilhouetteCertificate};
+    use limn::analysis::contour::silhouette::silhouette;
     use limn::model::{Model, WeldTolerance};
     let sphere = Model::from_patches(Format::Json, shapes::sphere(&q(3, 2)));
     let torus = Model::from_patches(Format::Json, shapes::torus(&q(3, 1), &q(1, 1)));
@@ -226,10 +229,9 @@ fn model_certificates_check_against_the_model() {
         let s = silhouette(
             m,
             &view,
-            &CurveOptions::default(),
-            WeldTolerance::Exact,
-            None,
-        );
+            &ContourOptions::new(CurveOptions::default(), WeldTolerance::Exact, None),
+        )
+        .expect("a valid view");
         let cert = SilhouetteCertificate::new("exact", &view, &s);
         let v = check_silhouette(m, &cert).unwrap_or_else(|e| panic!("{e}"));
         assert!(v.certified && v.arcs > 0);

@@ -181,7 +181,7 @@ fn a_node_is_reported_unresolved_not_guessed() {
 
 mod fuzz {
     use super::*;
-    use limn::solver::lines::solve_curve_lines;
+    use limn::solver::plane_curve::zero_lines::solve_curve_lines;
     use limn::solver::{isolate_roots, Ladder, Root};
     use limn::testing::strategies;
     use proptest::prelude::*;
@@ -369,7 +369,7 @@ mod review_regressions {
 /// is found; soundness: no other, and every branch is complete.
 #[test]
 fn zero_lines_are_divided_out_and_joined_where_the_curve_meets_them() {
-    use limn::solver::lines::solve_curve_lines;
+    use limn::solver::plane_curve::zero_lines::solve_curve_lines;
     // (u − 3/8)(v − 5/8)(u² + v² − 1/4) expanded.
     let (a, b) = (q(3, 8), q(5, 8));
     let ab = Rational::from(&a * &b);
@@ -421,7 +421,7 @@ fn zero_lines_are_divided_out_and_joined_where_the_curve_meets_them() {
 /// solver reports the undecided box instead of guessing.
 #[test]
 fn a_zero_line_at_a_non_dyadic_position_stays_unresolved() {
-    use limn::solver::lines::solve_curve_lines;
+    use limn::solver::plane_curve::zero_lines::solve_curve_lines;
     // (u − 1/3)(v − u)
     let third = q(1, 3);
     let line = Bernstein::new(&[1, 0], vec![Rational::from(-&third), q(2, 3)]).unwrap();
@@ -491,7 +491,7 @@ fn critical_points_in_undecided_boxes_are_classified() {
 /// (found by review).
 #[test]
 fn a_curve_touching_a_zero_line_is_not_certified_apart_from_it() {
-    use limn::solver::lines::solve_curve_lines;
+    use limn::solver::plane_curve::zero_lines::solve_curve_lines;
     let lin = |axis: usize, c: Rational| {
         let mut d = [0usize; 2];
         d[axis] = 1;
@@ -514,7 +514,7 @@ fn a_curve_touching_a_zero_line_is_not_certified_apart_from_it() {
 /// (found by review: the forced cut used to split every cell it crossed).
 #[test]
 fn a_deep_zero_line_is_cheap_where_the_quotient_has_a_sign() {
-    use limn::solver::lines::solve_curve_lines;
+    use limn::solver::plane_curve::zero_lines::solve_curve_lines;
     for k in [8u32, 12, 16, 20] {
         let c = Rational::from((1, 1i64 << k));
         let line =
@@ -533,7 +533,7 @@ fn a_deep_zero_line_is_cheap_where_the_quotient_has_a_sign() {
 /// (3/8, 11/64), four arcs, and at (0, 11/64), three arcs; everything else ends on the boundary.
 #[test]
 fn two_lines_and_a_zero_side() {
-    use limn::solver::lines::solve_curve_lines;
+    use limn::solver::plane_curve::zero_lines::solve_curve_lines;
     let p = Bernstein::new(&[1, 1], vec![q(0, 1), q(0, 1), q(-1, 1), q(53, 11)]).unwrap();
     let line = Bernstein::new(&[1, 0], vec![q(-3, 8), q(5, 8)]).unwrap();
     let s = solve_curve_lines(&(&line * &p), &CurveOptions::default());

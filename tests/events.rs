@@ -1,6 +1,6 @@
 //! Visual events on the viewing sphere against closed forms.
 
-use limn::analysis::bitangent_curves::BitangentOptions;
+use limn::analysis::bitangent::curves::BitangentOptions;
 use limn::analysis::events::{events, EventKind, EventOptions};
 use limn::model::{Format, Model, WeldTolerance};
 use limn::number::Rational;

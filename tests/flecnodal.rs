@@ -8,7 +8,7 @@
 //!   the same value in both parameterizations at the same point and line (it is invariant),
 //!   the printed condition does not.
 
-use limn::analysis::flecnodal::{flecnodal_system, printed_condition, Chart};
+use limn::analysis::flecnodal::system::{flecnodal_system, printed_condition, Chart};
 use limn::number::Rational;
 use limn::surface::RationalPatch;
 

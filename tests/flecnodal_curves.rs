@@ -2,7 +2,7 @@
 //! flecnodal points lie on the line `x + y = 2` with direction `(1, −1)`; a sphere (none);
 //! a cylinder (degenerate); the teapot (no panic, unresolved counted).
 
-use limn::analysis::flecnodal_curves::{flecnodal_curves, patch_flecnodal, FlecnodalOptions};
+use limn::analysis::flecnodal::curves::{flecnodal_curves, patch_flecnodal, FlecnodalOptions};
 use limn::number::Rational;
 use limn::testing::shapes;
 
@@ -197,7 +197,7 @@ fn the_handles_side_line_ends_at_an_exact_singular_point() {
             .collect();
         assert_eq!(line.len(), 1, "patch {index}: {:#?}", f.singular_points);
         let sp = line[0];
-        assert_eq!(sp.chart, limn::analysis::flecnodal::Chart::AlongU);
+        assert_eq!(sp.chart, limn::analysis::flecnodal::system::Chart::AlongU);
         assert_eq!(sp.branches, None);
         assert!((sp.xyz[1].abs() - 0.225).abs() < 1e-12, "{:?}", sp.xyz);
         let holding: Vec<_> = f

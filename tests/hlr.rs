@@ -2,8 +2,8 @@
 //! an independent analytic ray count (spheres: a quadratic; tori: the quartic, sampled and
 //! bisected in f64) at its interior drawn points, from many directions.
 
-use limn::analysis::hlr::{hidden_lines, HiddenLines, HlrOptions, LineKind};
-use limn::analysis::silhouette::View;
+use limn::analysis::view::View;
+use limn::analysis::visibility::hlr::{hidden_lines, HiddenLines, HlrOptions, LineKind};
 use limn::model::{Format, Model, WeldTolerance};
 use limn::number::Rational;
 use limn::surface::RationalPatch;

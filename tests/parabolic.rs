@@ -3,11 +3,12 @@
 //! sphere, planes and cylinders parabolic everywhere, the sign of the parabolic function
 //! against the torus's closed-form curvature sign, and the teapot without panic.
 
-use limn::analysis::parabolic::{parabolic, parabolic_function};
+use limn::analysis::contour::parabolic::{parabolic, parabolic_function};
 use limn::model::{Format, Model, WeldTolerance};
 use limn::number::Rational;
 use limn::solver::CurveOptions;
 use limn::testing::shapes;
+use limn::ContourOptions;
 
 fn q(a: i64, b: i64) -> Rational {
     Rational::from((a, b))
@@ -17,8 +18,12 @@ fn model(patches: Vec<limn::surface::RationalPatch>) -> Model {
     Model::from_patches(Format::Json, patches)
 }
 
-fn solve(m: &Model, tol: Option<f64>) -> limn::analysis::silhouette::Silhouette {
-    parabolic(m, &CurveOptions::default(), WeldTolerance::Exact, tol)
+fn solve(m: &Model, tol: Option<f64>) -> limn::analysis::contour::curves::Silhouette {
+    parabolic(
+        m,
+        &ContourOptions::new(CurveOptions::default(), WeldTolerance::Exact, tol),
+    )
+    .expect("no error")
 }
 
 /// On the torus (R = 3, r = 1) K = cos φ / (r (R + r cos φ)): positive on the outer half

@@ -1,7 +1,10 @@
 //! Silhouettes of exact closed-form models: loop counts (completeness and soundness of the
 //! topology), every output crossing on the true silhouette, degenerate cases reported.
 
-use limn::analysis::silhouette::{silhouette, View};
+use limn::analysis::contour::silhouette::silhouette;
+use limn::ContourOptions;
+
+use limn::analysis::view::View;
 use limn::model::{Format, Model, WeldTolerance};
 use limn::number::Rational;
 use limn::solver::{CrossingId, CurveOptions};
@@ -18,14 +21,13 @@ fn model(patches: Vec<limn::surface::RationalPatch>) -> Model {
 }
 
 /// The silhouette with default options, exact welding and no tolerance.
-fn solve(m: &Model, view: &View) -> limn::analysis::silhouette::Silhouette {
+fn solve(m: &Model, view: &View) -> limn::analysis::contour::curves::Silhouette {
     silhouette(
         m,
         view,
-        &CurveOptions::default(),
-        WeldTolerance::Exact,
-        None,
+        &ContourOptions::new(CurveOptions::default(), WeldTolerance::Exact, None),
     )
+    .expect("a valid view")
 }
 
 fn dir(x: i64, y: i64, z: i64) -> View {
@@ -36,7 +38,7 @@ fn dir(x: i64, y: i64, z: i64) -> View {
 /// for direction V is S · V = 0: check every crossing's location box brackets it, exactly.
 fn sphere_crossings_on_true_silhouette(
     m: &Model,
-    s: &limn::analysis::silhouette::Silhouette,
+    s: &limn::analysis::contour::curves::Silhouette,
     v: &[Rational; 3],
 ) {
     for (p, t) in s.patches.iter().enumerate() {
@@ -70,10 +72,9 @@ fn sphere_has_one_loop_from_generic_directions() {
         let s = silhouette(
             &m,
             &dir(x, y, z),
-            &CurveOptions::default(),
-            WeldTolerance::Exact,
-            None,
-        );
+            &ContourOptions::new(CurveOptions::default(), WeldTolerance::Exact, None),
+        )
+        .expect("a valid view");
         assert!(s.unresolved.is_empty(), "{:?}", s.unresolved);
         assert!(s.unjoined_edges.is_empty(), "{:?}", s.unjoined_edges);
         assert_eq!(
@@ -110,10 +111,9 @@ fn torus_has_two_loops_from_generic_directions() {
         let s = silhouette(
             &m,
             &dir(x, y, z),
-            &CurveOptions::default(),
-            WeldTolerance::Exact,
-            None,
-        );
+            &ContourOptions::new(CurveOptions::default(), WeldTolerance::Exact, None),
+        )
+        .expect("a valid view");
         assert!(s.unresolved.is_empty(), "{:?}", s.unresolved);
         let closed = s
             .curves
@@ -136,10 +136,9 @@ fn perspective_sphere_is_one_loop_and_edge_on_plane_is_degenerate() {
     let s = silhouette(
         &m,
         &View::Eye([q(1, 3), q(2, 1), q(5, 1)]),
-        &CurveOptions::default(),
-        WeldTolerance::Exact,
-        None,
-    );
+        &ContourOptions::new(CurveOptions::default(), WeldTolerance::Exact, None),
+    )
+    .expect("a valid view");
     assert!(s.unresolved.is_empty());
     assert_eq!(s.curves.len(), 1);
     assert!(s.curves[0].closed && s.curves[0].certified_topology);
@@ -147,10 +146,9 @@ fn perspective_sphere_is_one_loop_and_edge_on_plane_is_degenerate() {
     let s = silhouette(
         &plane,
         &dir(1, 2, 0),
-        &CurveOptions::default(),
-        WeldTolerance::Exact,
-        None,
-    );
+        &ContourOptions::new(CurveOptions::default(), WeldTolerance::Exact, None),
+    )
+    .expect("a valid view");
     assert_eq!(s.degenerate.len(), 1);
     assert_eq!(s.degenerate[0].kind, "edge-on");
     assert!(s.curves.is_empty());
@@ -168,10 +166,9 @@ fn thread_count_does_not_change_the_answer() {
             silhouette(
                 &m,
                 &dir(1, 2, 3),
-                &CurveOptions::default(),
-                WeldTolerance::Exact,
-                None,
+                &ContourOptions::new(CurveOptions::default(), WeldTolerance::Exact, None),
             )
+            .expect("a valid view")
         })
     };
     let (a, b) = (run(1), run(2));
@@ -188,10 +185,9 @@ fn axis_views_along_patch_edges_and_through_poles_are_certified() {
         let s = silhouette(
             &m,
             &dir(x, y, z),
-            &CurveOptions::default(),
-            WeldTolerance::Exact,
-            None,
-        );
+            &ContourOptions::new(CurveOptions::default(), WeldTolerance::Exact, None),
+        )
+        .expect("a valid view");
         assert!(
             s.unresolved.is_empty(),
             "({x},{y},{z}): {:?}",
@@ -218,7 +214,7 @@ fn axis_views_along_patch_edges_and_through_poles_are_certified() {
 
 #[test]
 fn deflation_divides_exactly() {
-    use limn::analysis::silhouette::deflate_side;
+    use limn::analysis::contour::sides::deflate_side;
     use limn::bernstein::Bernstein;
     use limn::surface::Edge;
     // g = v (1 - u) (u + 2v - 1/3): vanishes on v = 0 and u = 1.
@@ -241,7 +237,7 @@ fn deflation_divides_exactly() {
 /// the 4 × 3 control grid. The float baselines of paper 002 miss it; limn finds it.
 #[test]
 fn a_small_loop_the_float_baselines_miss() {
-    use limn::analysis::baseline::{baseline_silhouette, BaselineMethod};
+    use limn::analysis::contour::baseline::{baseline_silhouette, BaselineMethod};
     use rug::Integer;
     // f = x³/3 − x²/2 + (49/100) x + x y² − x y − 1/24, written in Bernstein degree (3, 2).
     let terms: [((u32, u32), Rational); 6] = [
@@ -279,10 +275,9 @@ fn a_small_loop_the_float_baselines_miss() {
     let s = silhouette(
         &model,
         &view,
-        &CurveOptions::default(),
-        WeldTolerance::Exact,
-        None,
-    );
+        &ContourOptions::new(CurveOptions::default(), WeldTolerance::Exact, None),
+    )
+    .expect("a valid view");
     assert!(s.unresolved.is_empty());
     assert_eq!(s.curves.len(), 1);
     assert!(s.curves[0].closed && s.curves[0].certified_topology);
@@ -303,7 +298,7 @@ fn a_small_loop_the_float_baselines_miss() {
 
 #[test]
 fn baselines_agree_with_limn_on_an_easy_case() {
-    use limn::analysis::baseline::{baseline_silhouette, BaselineMethod};
+    use limn::analysis::contour::baseline::{baseline_silhouette, BaselineMethod};
     // The graph of f = x²/2 − x/2 + x (y − 1/2)/4, seen along x: the silhouette is the line
     // f_x = x − 1/2 + (y − 1/2)/4 = 0, crossing the patch from v = 0 to v = 1.
     let f = |i: i64, j: i64| -> Rational {
@@ -328,10 +323,9 @@ fn baselines_agree_with_limn_on_an_easy_case() {
     let s = silhouette(
         &m,
         &view,
-        &CurveOptions::default(),
-        WeldTolerance::Exact,
-        None,
-    );
+        &ContourOptions::new(CurveOptions::default(), WeldTolerance::Exact, None),
+    )
+    .expect("a valid view");
     assert_eq!(s.curves.len(), 1);
     assert!(s.curves[0].certified_topology && !s.curves[0].closed);
     for method in [BaselineMethod::SrfNode, BaselineMethod::Mesh] {
@@ -365,10 +359,9 @@ fn traced_sphere_silhouette_is_within_the_tolerance() {
         let s = silhouette(
             &m,
             &dir(1, 2, 2),
-            &CurveOptions::default(),
-            WeldTolerance::Exact,
-            Some(tol),
-        );
+            &ContourOptions::new(CurveOptions::default(), WeldTolerance::Exact, Some(tol)),
+        )
+        .expect("a valid view");
         assert_eq!(s.curves.len(), 1);
         let c = &s.curves[0];
         assert!(c.certified, "tol {tol}");
@@ -496,7 +489,7 @@ fn teapot_axis_views_have_exact_junctions() {
 /// view is certified, and so is its certificate.
 #[test]
 fn teapot_horizontal_views_cross_the_rim_circle() {
-    use limn::analysis::silhouette_certificate::{check_silhouette, SilhouetteCertificate};
+    use limn::analysis::contour::certificate::{check_silhouette, SilhouetteCertificate};
     let m = limn::testing::teapot();
     for view in [dir(1, 2, 0), dir(2, -1, 0), dir(1, 1, 0), dir(-3, 1, 0)] {
         let s = solve(&m, &view);
@@ -536,7 +529,7 @@ fn teapot_horizontal_views_cross_the_rim_circle() {
 /// point (the difference computed exactly), and the bound is tiny beside the model's size.
 #[test]
 fn drawn_points_are_within_the_rounding_bound() {
-    use limn::analysis::silhouette::DrawPatch;
+    use limn::analysis::contour::drawing::DrawPatch;
     let mut patches: Vec<limn::surface::RationalPatch> = limn::testing::teapot()
         .patches
         .iter()

@@ -5,7 +5,7 @@
 
 use limn::bernstein::Bernstein;
 use limn::number::{Interval, Precision, Rational};
-use limn::solver::curve_n::{solve_space_curve, ArcAccept, SpaceCurve, SpaceCurveOptions};
+use limn::solver::space_curve::{solve_space_curve, ArcAccept, SpaceCurve, SpaceCurveOptions};
 use limn::solver::system::{solve_system, SystemOptions};
 use limn::solver::{solve_curve, CurveOptions, Dyadic};
 

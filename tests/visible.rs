@@ -13,8 +13,12 @@
 //!   completeness (every point of the analytic occlusion curve within the bound of a drawn
 //!   one) separately.
 
-use limn::analysis::silhouette::{eval_f64, View};
-use limn::analysis::visible::{visible_regions, TrimKind, VisibleOptions, VisibleRegions};
+use limn::analysis::contour::drawing::eval_f64;
+
+use limn::analysis::view::View;
+use limn::analysis::visibility::visible::{
+    visible_regions, TrimKind, VisibleOptions, VisibleRegions,
+};
 use limn::model::{Format, Model, WeldTolerance};
 use limn::number::Rational;
 use limn::surface::RationalPatch;

@@ -1,7 +1,7 @@
 //! Helpers shared by the benches: a view direction, a thread pool, and the IGES coil spring
 //! for the runs behind `LIMN_BENCH_SPRING=1`.
 
-use limn::analysis::silhouette::View;
+use limn::analysis::view::View;
 use limn::model::{Model, WeldTolerance};
 use limn::number::Rational;
 

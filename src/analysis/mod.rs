@@ -1,26 +1,12 @@
-//! Layer 5: analyses, one module per capability, each built on the solver.
+//! Layer 5: the analyses, one folder per capability, each built on the solver, with the
+//! pieces they share beside them: the exact image of a view ([`projection`]) and the chord
+//! bounds that make drawn curves certified ([`chords`]).
 
-pub mod accuracy;
-pub mod baseline;
 pub mod bitangent;
-pub mod bitangent_curves;
-pub mod bitangent_report;
+pub mod chords;
+pub mod contour;
 pub mod events;
-pub mod facing;
 pub mod flecnodal;
-pub mod flecnodal_curves;
-pub mod flecnodal_report;
-pub mod fold_edges;
-pub mod hlr;
-pub mod line_cone;
-pub mod model_curves;
-pub mod parabolic;
-pub mod patch_curve;
 pub mod projection;
-pub mod ray;
-pub mod render;
-pub mod silhouette;
-pub mod silhouette_certificate;
-pub mod tangent_lines;
-pub mod vec3;
-pub mod visible;
+pub mod view;
+pub mod visibility;

@@ -13,9 +13,9 @@
 //! Everything is exact: two points have the same image exactly when
 //! `x₁ q₂ − x₂ q₁ = 0` and `y₁ q₂ − y₂ q₁ = 0`, and one is in front of the other by the sign
 //! of `depth₁ W₂ − depth₂ W₁` (the weights are positive). Hidden-line removal and visible
-//! regions are written on these polynomials only ([`super::hlr`], [`super::ray`]).
+//! regions are written on these polynomials only ([`crate::analysis::visibility::hlr`], [`crate::analysis::visibility::ray`]).
 
-use super::silhouette::View;
+use crate::analysis::view::View;
 use crate::bernstein::Bernstein;
 use crate::model::Model;
 use crate::number::{Interval, Number, Precision, Rational};
@@ -124,7 +124,7 @@ impl Projection {
     /// # Examples
     /// ```
     /// use limn::analysis::projection::Projection;
-    /// use limn::analysis::silhouette::View;
+    /// use limn::analysis::view::View;
     /// use limn::number::Rational;
     /// use limn::testing::shapes;
     /// let model = limn::model::Model::from_patches(

@@ -1,6 +1,6 @@
-//! Curve certificates: what [`solve_curve`](super::solve_curve) proved about `g = 0` on the
+//! Curve certificates: what [`solve_curve`](crate::solver::solve_curve) proved about `g = 0` on the
 //! unit square, as plain data (exact rational strings) that the independent checker
-//! ([`super::checker`]) re-verifies in `num-rational` arithmetic
+//! ([`crate::solver::checker`]) re-verifies in `num-rational` arithmetic
 //! (`proofs/certificate-check.md`).
 //!
 //! A certificate lists the leaf boxes of the subdivision (which must tile the square) with the
@@ -8,11 +8,11 @@
 //! an isolating interval on a grid line), the arcs inside each monotone box, and the branches
 //! (components) as chains of crossings.
 
-use super::curve2::{CellKind, CrossingId, CurveTopology};
-use super::dyadic::Dyadic;
-use super::precision::Level;
 use crate::bernstein::Bernstein;
 use crate::number::{Rational, Sign};
+use crate::solver::dyadic::Dyadic;
+use crate::solver::plane_curve::{CellKind, CrossingId, CurveTopology};
+use crate::solver::precision::Level;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 

@@ -1,20 +1,18 @@
-//! Layer 4: the solver. Exact dyadic boxes, the precision controller, certified root
-//! isolation; every analysis is built on these.
+//! Layer 4: the solver. Exact dyadic boxes, the precision ladder, certified root isolation,
+//! square systems, and the certified topology of plane curves ([`plane_curve`]) and of curves
+//! in n variables ([`space_curve`]); every analysis is built on these.
 
 pub mod certificate;
 pub(crate) mod chain;
 pub mod checker;
-pub mod curve2;
-pub mod curve_n;
 pub mod dyadic;
-pub mod lines;
+pub mod plane_curve;
 pub mod precision;
-pub mod singular;
-pub mod star;
+pub mod space_curve;
 pub mod system;
 pub mod univariate;
 
-pub use curve2::{solve_curve, solve_curve_cut, CrossingId, CurveOptions, CurveTopology};
 pub use dyadic::{Dyadic, DyadicBox};
+pub use plane_curve::{solve_curve, solve_curve_cut, CrossingId, CurveOptions, CurveTopology};
 pub use precision::{Escalations, Ladder, Level, Question};
 pub use univariate::{isolate_roots, isolate_roots_in, refine_root, Root, Roots};

@@ -15,9 +15,9 @@
 //! caller to decide. Written for any number of variables (up to the Bernstein limit), so
 //! later systems (bitangents, flecnodal points) use the same code.
 
-use super::dyadic::Dyadic;
 use crate::bernstein::Bernstein;
 use crate::number::{Interval, Number, Precision, Rational};
+use crate::solver::dyadic::Dyadic;
 
 /// Budgets of the system solver.
 #[derive(Clone, Debug)]

@@ -6,10 +6,10 @@
 //! exactly one, simple. Coefficient signs are decided by the precision controller; exact
 //! roots at dyadic split points are found by exact evaluation.
 
-use super::dyadic::{Dyadic, MAX_DEPTH};
-use super::precision::{Escalations, Ladder, Question};
 use crate::bernstein::Bernstein;
 use crate::number::{Certified, Interval, Number, Precision, Rational, Sign};
+use crate::solver::dyadic::{Dyadic, MAX_DEPTH};
+use crate::solver::precision::{Escalations, Ladder, Question};
 
 /// An isolated root.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
@@ -181,7 +181,7 @@ pub fn isolate_roots_in(
                 }
             }
         } else {
-            stats.record(Some(super::precision::Level::F64));
+            stats.record(Some(crate::solver::precision::Level::F64));
         }
         match variations(&signs) {
             0 => {}

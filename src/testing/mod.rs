@@ -24,7 +24,7 @@ pub use arbitrary::ArbitraryPatch;
 pub fn teapot() -> crate::model::Model {
     crate::io::read_model_bytes(
         "teapot",
-        crate::cli::EMBEDDED_TEAPOT.as_bytes(),
+        crate::TEAPOT.as_bytes(),
         Some(crate::model::Format::Bpt),
     )
     .expect("the embedded teapot parses")

@@ -10,7 +10,7 @@
 
 pub mod arith;
 
-use super::certificate::{CellClaim, CrossingClaim, CurveCertificate};
+use crate::solver::certificate::{CellClaim, CrossingClaim, CurveCertificate};
 use arith::{sign, Dy, IPoly};
 use num_bigint::BigInt;
 use num_rational::BigRational;

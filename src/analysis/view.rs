@@ -1,0 +1,86 @@
+//! The view every view-dependent analysis takes: a parallel direction or a perspective eye,
+//! with exact rational coordinates (the input is exact).
+
+use crate::number::{Number, Rational};
+
+/// A view: parallel direction (from the viewer into the scene) or perspective eye point.
+///
+/// A point of a solid is front-facing (on the visible side) when `n·V < 0` for a direction `V`,
+/// or `n·(E − S) > 0` for an eye `E`, with `n` the outward normal `S_u × S_v`.
+///
+/// # Examples
+/// ```
+/// use limn::View;
+/// let v = View::direction([1, 2, 3]);
+/// assert_eq!(v, View::parse_direction("1,2,3").unwrap());
+/// assert_eq!(v.to_json().to_string(), r#"{"dir":[1.0,2.0,3.0]}"#);
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub enum View {
+    /// Parallel projection along this direction.
+    Direction([Rational; 3]),
+    /// Perspective from this eye point.
+    Eye([Rational; 3]),
+}
+
+impl View {
+    /// The parallel view along an integer direction.
+    pub fn direction(d: [i64; 3]) -> View {
+        View::Direction(d.map(Rational::from))
+    }
+
+    /// The perspective view from an integer eye point.
+    pub fn eye(e: [i64; 3]) -> View {
+        View::Eye(e.map(Rational::from))
+    }
+
+    /// The parallel view along `"x,y,z"` (each number read exactly, as the model's are).
+    ///
+    /// # Errors
+    /// A message if the text is not three numbers.
+    pub fn parse_direction(text: &str) -> Result<View, String> {
+        parse_vector(text).map(View::Direction)
+    }
+
+    /// The perspective view from `"x,y,z"`.
+    ///
+    /// # Errors
+    /// A message if the text is not three numbers.
+    pub fn parse_eye(text: &str) -> Result<View, String> {
+        parse_vector(text).map(View::Eye)
+    }
+
+    /// The view as JSON: `{"dir": [x, y, z]}` or `{"eye": [x, y, z]}` (f64).
+    pub fn to_json(&self) -> serde_json::Value {
+        let v = |x: &[Rational; 3]| x.clone().map(|c| c.to_f64());
+        match self {
+            View::Direction(d) => serde_json::json!({ "dir": v(d) }),
+            View::Eye(e) => serde_json::json!({ "eye": v(e) }),
+        }
+    }
+
+    /// Whether a direction view is the zero vector (meaningless).
+    pub fn is_degenerate(&self) -> bool {
+        match self {
+            View::Direction(d) => d.iter().all(|c| c.sign().is_zero()),
+            View::Eye(_) => false,
+        }
+    }
+}
+
+/// Parses "x,y,z" into an exact vector.
+///
+/// # Errors
+/// A message if the text is not three numbers.
+pub fn parse_vector(text: &str) -> Result<[Rational; 3], String> {
+    let parts: Vec<&str> = text.split(',').collect();
+    if parts.len() != 3 {
+        return Err(format!("expected three numbers x,y,z, found {text:?}"));
+    }
+    let mut v = Vec::with_capacity(3);
+    for p in parts {
+        v.push(crate::number::parse_exact(p).map_err(|e| format!("{text:?}: {e}"))?);
+    }
+    let v: [Rational; 3] = v.try_into().map_err(|_| "three numbers".to_string())?;
+    Ok(v)
+}

@@ -1,0 +1,617 @@
+//! Certified ray tests: how many surface layers lie in front of a point of a model, along the
+//! viewing ray through it (its quantitative invisibility, QI).
+//!
+//! For a sample point `p` and each patch `j` whose image box and depth range can meet the ray,
+//! the points of `j` with the image of `p` are the roots of the square system
+//! `x_j q_p − x_p q_j = 0`, `y_j q_p − y_p q_j = 0` (see [`crate::analysis::projection`]), isolated by
+//! the certified system solver ([`crate::solver::solve_system`], `proofs/krawczyk.md`); each
+//! root is in front of `p` by the certified sign of `depth_j w_p − depth_p w_j` on its
+//! enclosure. The count is proven when every root is isolated, lies strictly inside its
+//! domain (a ray through a patch edge would be counted on both patches), and has a strict
+//! depth sign. Otherwise the sample is refused with the reason, and the caller tries another.
+//!
+//! The sheets that carry `p` itself (its own patch, and the patch across a shared side) have
+//! `p` as a root at depth zero. That root is excluded by a box around it that provably holds
+//! no other point with the same image (`proofs/ray-count.md`):
+//! - where the image map is a local diffeomorphism, a box on which its interval Jacobian is
+//!   regular (the map is injective there);
+//! - at a silhouette point, a box on which the fold lemma holds: with rotated image
+//!   coordinates `(κ, η)`, `∂κ/∂u` and `∂κ/∂v` keep their signs and `η` is strictly convex
+//!   along the level curves of `κ`; then the fibre of every fold point in the box is that
+//!   point alone.
+//!
+//! The rest of the domain is solved with those boxes excluded
+//! ([`crate::solver::system::solve_system_excluding`]).
+
+pub use crate::analysis::projection::fix_axis;
+use crate::analysis::projection::{lift, side_point, ImagePolys};
+use crate::analysis::visibility::scene::{ratio_bounds, ImageBounds, Poly, Scene};
+use crate::analysis::visibility::sheets::{fold_box, fold_box_around, injective_box, range_on};
+use crate::bernstein::Bernstein;
+use crate::number::{Interval, Number, Precision, Rational};
+use crate::solver::dyadic::Dyadic;
+use crate::solver::system::{solve_system_excluding, DyadicBoxN, SystemOptions};
+use crate::surface::Edge;
+
+/// A point whose QI is wanted.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Sample {
+    /// The point of a patch at exact dyadic parameters, not on its silhouette.
+    Exact {
+        /// The patch.
+        patch: usize,
+        /// Its parameters.
+        uv: [Rational; 2],
+    },
+    /// The silhouette point of a patch on the line `axis = at`, the other parameter being the
+    /// only root of the silhouette function on that line in `[lo, hi]`.
+    Silhouette {
+        /// The patch.
+        patch: usize,
+        /// The fixed parameter (0: u, 1: v).
+        axis: usize,
+        /// Its value (dyadic).
+        at: Rational,
+        /// The isolating interval of the free parameter (dyadic ends).
+        interval: [Rational; 2],
+        /// The silhouette function of the patch.
+        g: Poly,
+    },
+}
+
+/// Budgets of a ray test.
+#[derive(Clone, Debug)]
+pub struct RayOptions {
+    /// Budgets of each system solve.
+    pub system: SystemOptions,
+}
+
+impl Default for RayOptions {
+    fn default() -> Self {
+        RayOptions {
+            system: SystemOptions {
+                max_depth: 24,
+                max_boxes: 4_000,
+                refine_width: 1e-12,
+            },
+        }
+    }
+}
+
+/// The point's image polynomials in its own free variables (none for an exact point: then
+/// constants), the box of those variables, and its constraints.
+struct PointSystem {
+    /// Number of free variables (0 or 1).
+    nvars: usize,
+    /// Image polynomials in the free variables (constant polynomials in 1 variable if none).
+    image: ImagePolys,
+    /// The free variables' box.
+    domain: DyadicBoxN,
+    /// Constraints on the free variables (the silhouette function on the line).
+    constraints: Vec<Poly>,
+}
+
+impl Sample {
+    /// An enclosure of the sample's parameters on its patch, `[lo, hi]` per parameter.
+    pub fn uv_enclosure(&self) -> [[f64; 2]; 2] {
+        let r = |q: &Rational| [q.lower_f64(), q.upper_f64()];
+        match self {
+            Sample::Exact { uv, .. } => [r(&uv[0]), r(&uv[1])],
+            Sample::Silhouette {
+                axis, at, interval, ..
+            } => {
+                let mut out = [r(at), r(at)];
+                out[1 - axis] = [interval[0].lower_f64(), interval[1].upper_f64()];
+                out
+            }
+        }
+    }
+}
+
+pub(crate) fn dy(q: &Rational) -> Option<Dyadic> {
+    Dyadic::from_rational(q)
+}
+
+impl Sample {
+    /// The patch the sample lies on.
+    pub fn patch(&self) -> usize {
+        match self {
+            Sample::Exact { patch, .. } | Sample::Silhouette { patch, .. } => *patch,
+        }
+    }
+
+    fn system(&self, scene: &Scene) -> Option<PointSystem> {
+        let im = &scene.images[self.patch()];
+        match self {
+            Sample::Exact { uv, .. } => {
+                let c = |p: &Poly| Bernstein::constant(1, p.eval(uv));
+                Some(PointSystem {
+                    nvars: 0,
+                    image: ImagePolys {
+                        x: c(&im.x),
+                        y: c(&im.y),
+                        q: c(&im.q),
+                        depth: c(&im.depth),
+                        w: c(&im.w),
+                    },
+                    domain: Vec::new(),
+                    constraints: Vec::new(),
+                })
+            }
+            Sample::Silhouette {
+                axis,
+                at,
+                interval,
+                g,
+                ..
+            } => {
+                let whole = im.on_line(*axis, at);
+                Some(PointSystem {
+                    nvars: 1,
+                    image: whole,
+                    domain: vec![(dy(&interval[0])?, dy(&interval[1])?)],
+                    constraints: vec![fix_axis(g, *axis, at)],
+                })
+            }
+        }
+    }
+}
+
+/// The QI of a sample point, proven: the number of surface layers strictly in front of it on
+/// its viewing ray.
+///
+/// # Errors
+/// Why the count is not proven (the caller may try another sample): a ray through a patch
+/// edge or tangent to a patch, a point whose own sheet could not be excluded, a budget.
+pub fn layers_in_front(scene: &Scene, sample: &Sample, opts: &RayOptions) -> Result<usize, String> {
+    layers(scene, sample, opts, false).map(|l| l.in_front)
+}
+
+/// A point of the model on a sample's ray, behind the sample.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Hit {
+    /// Its patch.
+    pub patch: usize,
+    /// An enclosure of its parameters, `[lo, hi]` per variable (the only point of the patch
+    /// on the ray in it).
+    pub uv: [[f64; 2]; 2],
+    /// An enclosure of its depth.
+    pub depth: [f64; 2],
+}
+
+/// The surface layers on a sample's ray: how many lie in front of it (proven), and, if
+/// asked, the points behind it (proven complete, or why not).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Layers {
+    /// The QI of the sample.
+    pub in_front: usize,
+    /// Every point of the model on the ray behind the sample (each with its own enclosure),
+    /// or why they are not proven; empty if not asked.
+    pub behind: Result<Vec<Hit>, String>,
+}
+
+impl Layers {
+    /// The nearest point behind the sample, if its depth is proven less than every other's
+    /// (`Ok(None)`: nothing behind, the background).
+    ///
+    /// # Errors
+    /// The points behind are not proven, or two of them are not proven apart in depth.
+    pub fn first_behind(&self) -> Result<Option<&Hit>, String> {
+        let behind = self.behind.as_ref().map_err(|e| e.clone())?;
+        let Some(first) = behind
+            .iter()
+            .min_by(|a, b| a.depth[0].total_cmp(&b.depth[0]))
+        else {
+            return Ok(None);
+        };
+        let apart = behind
+            .iter()
+            .filter(|h| !std::ptr::eq(*h, first))
+            .all(|h| first.depth[1] < h.depth[0]);
+        if apart {
+            Ok(Some(first))
+        } else {
+            Err("two surface points behind it are not proven apart in depth".into())
+        }
+    }
+}
+
+/// [`layers_in_front`], and with `behind` also every point of the model behind the sample on
+/// its ray ([`Layers::behind`]).
+///
+/// # Errors
+/// As [`layers_in_front`] (a problem behind the sample only makes [`Layers::behind`] an
+/// error).
+pub fn layers(
+    scene: &Scene,
+    sample: &Sample,
+    opts: &RayOptions,
+    behind: bool,
+) -> Result<Layers, String> {
+    let ps = sample
+        .system(scene)
+        .ok_or("the sample's parameters are not dyadic")?;
+    let own = sample.patch();
+    // The sample's depth range and image box, to skip patches that cannot be in front.
+    let pb = point_bounds(&ps);
+    let mut count = 0;
+    let mut hits: Result<Vec<Hit>, String> = if behind {
+        Ok(Vec::new())
+    } else {
+        Err("not asked".into())
+    };
+    for (j, jb) in scene.bounds.iter().enumerate() {
+        if !jb.meets_image(&pb) || (!behind && jb.depth[0] > pb.depth[1]) {
+            continue;
+        }
+        // Parameters of the sheets through the sample on this patch, each to be excluded.
+        let mut exclude: Vec<DyadicBoxN> = Vec::new();
+        match sample {
+            Sample::Exact { uv, .. } => {
+                let mut carriers: Vec<[Rational; 2]> = Vec::new();
+                if j == own {
+                    carriers.push(uv.clone());
+                }
+                if j != own {
+                    for (edge, t) in sides_through(uv) {
+                        for (tp, te, rev) in scene.twins(own, edge) {
+                            if tp == j {
+                                let t2 = if rev {
+                                    Rational::from(1) - &t
+                                } else {
+                                    t.clone()
+                                };
+                                carriers.push(side_point(te, &t2));
+                            }
+                        }
+                    }
+                }
+                for c in carriers {
+                    let bx = injective_box(scene, j, &c).or_else(|| {
+                        // A fold point (the Jacobian's determinant is exactly zero there): the
+                        // fold lemma's box, whose fold points are alone in their fibres.
+                        is_fold_point(scene, j, &c)
+                            .then(|| fold_box_around(scene, j, &c, &c))
+                            .flatten()
+                    });
+                    exclude.push(bx.ok_or_else(|| {
+                        format!("the point's own sheet on patch {j} is not excluded (the image map is not provably injective near it)")
+                    })?);
+                }
+            }
+            Sample::Silhouette {
+                axis, at, interval, ..
+            } => {
+                if j == own {
+                    exclude.push(fold_box(scene, j, *axis, at, interval).ok_or_else(|| {
+                        format!(
+                            "the fold lemma does not hold near the silhouette point on patch {j}"
+                        )
+                    })?);
+                }
+            }
+        }
+        let (front, back) = hits_on_ray(scene, &ps, j, &exclude, opts)?;
+        count += front;
+        if let Ok(all) = &mut hits {
+            match back {
+                Ok(b) => all.extend(b),
+                Err(e) => hits = Err(e),
+            }
+        }
+    }
+    Ok(Layers {
+        in_front: count,
+        behind: if behind { hits } else { Ok(Vec::new()) },
+    })
+}
+
+/// Whether the image map of patch `j` is singular at exact parameters (its Jacobian's
+/// numerator determinant is exactly zero: a point of the silhouette, a fold point).
+fn is_fold_point(scene: &Scene, j: usize, uv: &[Rational; 2]) -> bool {
+    let m = &scene.jacobians[j];
+    let e = |p: &Poly| p.eval(uv);
+    Rational::from(&e(&m[0][0]) * &e(&m[1][1])) == Rational::from(&e(&m[0][1]) * &e(&m[1][0]))
+}
+
+/// The sides of the square through a parameter point, with the side parameter.
+fn sides_through(uv: &[Rational; 2]) -> Vec<(Edge, Rational)> {
+    let mut out = Vec::new();
+    let (zero, one) = (Rational::new(), Rational::from(1));
+    if uv[1] == zero {
+        out.push((Edge::V0, uv[0].clone()));
+    }
+    if uv[1] == one {
+        out.push((Edge::V1, uv[0].clone()));
+    }
+    if uv[0] == zero {
+        out.push((Edge::U0, uv[1].clone()));
+    }
+    if uv[0] == one {
+        out.push((Edge::U1, uv[1].clone()));
+    }
+    out
+}
+
+fn point_bounds(ps: &PointSystem) -> ImageBounds {
+    ImageBounds {
+        x: ratio_bounds(&ps.image.x, &ps.image.q),
+        y: ratio_bounds(&ps.image.y, &ps.image.q),
+        depth: ratio_bounds(&ps.image.depth, &ps.image.w),
+    }
+}
+
+/// The hits of patch `j` on the point's ray outside the excluded boxes: how many in front of
+/// the point, and those behind it (or why they are not proven: a root behind near the
+/// boundary of the patch).
+fn hits_on_ray(
+    scene: &Scene,
+    ps: &PointSystem,
+    j: usize,
+    exclude: &[DyadicBoxN],
+    opts: &RayOptions,
+) -> Result<(usize, Result<Vec<Hit>, String>), String> {
+    let n = ps.nvars + 2;
+    let pim = &ps.image;
+    let jim = &scene.images[j];
+    let lp = |p: &Poly| {
+        if ps.nvars == 0 {
+            Bernstein::constant(n, p.coeffs()[0].clone())
+        } else {
+            lift(p, n, 0)
+        }
+    };
+    let lj = |p: &Poly| lift(p, n, ps.nvars);
+    let eq_x = &(&lj(&jim.x) * &lp(&pim.q)) - &(&lp(&pim.x) * &lj(&jim.q));
+    let eq_y = &(&lj(&jim.y) * &lp(&pim.q)) - &(&lp(&pim.y) * &lj(&jim.q));
+    let front = &(&lj(&jim.depth) * &lp(&pim.w)) - &(&lp(&pim.depth) * &lj(&jim.w));
+    let mut square = vec![eq_x, eq_y];
+    square.extend(ps.constraints.iter().map(|c| lift(c, n, 0)));
+    let front_i: Bernstein<Interval> = front.convert(Precision::F64);
+    let mut count = 0;
+    let mut behind: Result<Vec<Hit>, String> = Ok(Vec::new());
+    let mut domain = ps.domain.clone();
+    domain.extend([(Dyadic::ZERO, Dyadic::ONE), (Dyadic::ZERO, Dyadic::ONE)]);
+    let exclude: Vec<DyadicBoxN> = exclude
+        .iter()
+        .map(|b| ps.domain.iter().chain(b).copied().collect())
+        .collect();
+    let r = solve_system_excluding(&square, &[], &domain, &exclude, &opts.system);
+    if !r.unresolved.is_empty() {
+        return Err(format!(
+            "the ray meets patch {j} where its intersections are not isolated (tangent to the patch, or a budget)"
+        ));
+    }
+    for root in &r.roots {
+        let inside_domain = root.inside;
+        let near_excluded = exclude.iter().any(|e| {
+            root.enclosure
+                .iter()
+                .zip(e)
+                .all(|(x, d)| x[1] >= d.0.to_f64() && x[0] <= d.1.to_f64())
+        });
+        let lo: Vec<f64> = root.enclosure.iter().map(|e| e[0]).collect();
+        let hi: Vec<f64> = root.enclosure.iter().map(|e| e[1]).collect();
+        let on = front_i.restrict_box_f64(&lo, &hi);
+        let c = on.coeffs();
+        let is_behind = c.iter().all(|x| x.lo() > 0.0);
+        let near = || {
+            format!(
+                "the ray passes within {:.1e} of the boundary of patch {j} (or of the box around the point's own sheet)",
+                root.enclosure.iter().map(|e| e[1] - e[0]).fold(0.0, f64::max)
+            )
+        };
+        if is_behind {
+            if !inside_domain || near_excluded {
+                behind = Err(near());
+            } else if let Ok(b) = &mut behind {
+                let uv = [root.enclosure[ps.nvars], root.enclosure[ps.nvars + 1]];
+                b.push(Hit {
+                    patch: j,
+                    uv,
+                    depth: depth_on(&jim.depth, &jim.w, uv),
+                });
+            }
+            continue;
+        }
+        if !inside_domain || near_excluded {
+            return Err(near());
+        }
+        if c.iter().all(|x| x.hi() < 0.0) {
+            count += 1;
+        } else {
+            return Err(format!(
+                "the ray meets patch {j} at the depth of the point (the point may lie on patch {j})"
+            ));
+        }
+    }
+    Ok((count, behind))
+}
+
+/// An enclosure of `depth / w` on a parameter box (`w > 0`).
+fn depth_on(depth: &Poly, w: &Poly, uv: [[f64; 2]; 2]) -> [f64; 2] {
+    let (lo, hi) = ([uv[0][0], uv[1][0]], [uv[0][1], uv[1][1]]);
+    let on = |p: &Poly| range_on(&p.convert(Precision::F64), &lo, &hi);
+    match on(depth).checked_div(&on(w)) {
+        Some(d) => [d.lo(), d.hi()],
+        None => [f64::NEG_INFINITY, f64::INFINITY],
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::view::View;
+    use crate::model::Format;
+    use crate::model::{Model, WeldTolerance};
+    use crate::solver::precision::Ladder;
+    use crate::solver::univariate::{isolate_roots, refine_root, Root};
+    use crate::surface::RationalPatch;
+    use crate::testing::shapes;
+
+    fn q(n: i64, d: i64) -> Rational {
+        Rational::from((n, d))
+    }
+
+    fn scene_of(patches: Vec<RationalPatch>, view: [i64; 3]) -> Scene {
+        let model = Model::from_patches(Format::Json, patches);
+        Scene::new(
+            &model,
+            &View::Direction(view.map(Rational::from)),
+            WeldTolerance::Exact,
+        )
+        .unwrap()
+    }
+
+    fn shifted(patches: Vec<RationalPatch>, by: [i64; 3]) -> Vec<RationalPatch> {
+        patches
+            .into_iter()
+            .map(|p| p.map_points(|x| std::array::from_fn(|k| Rational::from(&x[k] + by[k]))))
+            .collect()
+    }
+
+    fn exact(patch: usize, u: Rational, v: Rational) -> Sample {
+        Sample::Exact { patch, uv: [u, v] }
+    }
+
+    #[test]
+    fn a_sphere_seen_from_above_hides_its_lower_half() {
+        let s = scene_of(shapes::sphere(&Rational::from(1)), [0, 0, -1]);
+        let opts = RayOptions::default();
+        for p in 0..8 {
+            let n = layers_in_front(&s, &exact(p, q(1, 2), q(1, 2)), &opts).unwrap();
+            // Patches 0-3 are the southern hemisphere.
+            assert_eq!(n, usize::from(p < 4), "patch {p}");
+        }
+    }
+
+    #[test]
+    fn a_point_on_a_shared_side_does_not_count_its_neighbour() {
+        let s = scene_of(shapes::sphere(&Rational::from(1)), [1, 2, -3]);
+        let opts = RayOptions::default();
+        // The side u = 1 of a northern patch is shared with the next one around.
+        for p in 4..8 {
+            let r = layers_in_front(&s, &exact(p, Rational::from(1), q(3, 8)), &opts);
+            let here = layers_in_front(&s, &exact(p, q(15, 16), q(3, 8)), &opts);
+            assert!(r.is_ok() && here.is_ok(), "patch {p}: {r:?} {here:?}");
+        }
+    }
+
+    #[test]
+    fn a_sphere_behind_another_is_hidden_twice() {
+        let mut patches = shapes::sphere(&Rational::from(1));
+        patches.extend(shifted(shapes::sphere(&Rational::from(1)), [0, 0, -3]));
+        let s = scene_of(patches, [0, 0, -1]);
+        let opts = RayOptions::default();
+        // The lower sphere's northern patches (12-15) at latitude ~45°: behind both sheets of
+        // the upper sphere.
+        for p in 12..16 {
+            assert_eq!(
+                layers_in_front(&s, &exact(p, q(1, 2), q(1, 2)), &opts),
+                Ok(2)
+            );
+        }
+        // Its southern patches: three sheets in front.
+        assert_eq!(
+            layers_in_front(&s, &exact(9, q(1, 2), q(1, 2)), &opts),
+            Ok(3)
+        );
+    }
+
+    /// Silhouette samples on the lines u = k/8 of every patch.
+    fn silhouette_samples(s: &Scene, model: &Model) -> Vec<Sample> {
+        let mut out = Vec::new();
+        for (i, p) in model.patches.iter().enumerate() {
+            let g = crate::analysis::contour::silhouette::silhouette_function(
+                &p.surface,
+                &s.projection.view,
+            );
+            for k in 1..8 {
+                let at = q(k, 8);
+                let line = fix_axis(&g, 0, &at);
+                let roots = isolate_roots(&line, &Ladder::default(), 40, &mut Default::default());
+                for r in roots.roots {
+                    let r =
+                        refine_root(&line, r, 1e-12, &Ladder::default(), &mut Default::default());
+                    if let Root::Between { lo, hi } = r {
+                        let interval = [lo.to_rational(), hi.to_rational()];
+                        out.push(Sample::Silhouette {
+                            patch: i,
+                            axis: 0,
+                            at: at.clone(),
+                            interval,
+                            g: g.clone(),
+                        });
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn the_silhouette_of_a_sphere_is_visible() {
+        let model = Model::from_patches(Format::Json, shapes::sphere(&Rational::from(1)));
+        let s = Scene::new(
+            &model,
+            &View::Direction([1, 2, 3].map(Rational::from)),
+            WeldTolerance::Exact,
+        )
+        .unwrap();
+        let samples = silhouette_samples(&s, &model);
+        assert!(samples.len() >= 4, "{}", samples.len());
+        for smp in &samples {
+            assert_eq!(
+                layers_in_front(&s, smp, &RayOptions::default()),
+                Ok(0),
+                "{smp:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn the_silhouette_of_a_sphere_behind_another_is_hidden_where_it_passes_behind() {
+        // A second unit sphere behind the first and shifted sideways: its outline passes
+        // behind the first sphere's disc over part of its length.
+        let mut patches = shapes::sphere(&Rational::from(1));
+        patches.extend(shifted(shapes::sphere(&Rational::from(1)), [1, 0, -4]));
+        let model = Model::from_patches(Format::Json, patches);
+        let dir = [1, 2, -6];
+        let view = View::Direction(dir.map(Rational::from));
+        let s = Scene::new(&model, &view, WeldTolerance::Exact).unwrap();
+        let d = crate::geometry::vec3::normalize(dir.map(|x| x as f64));
+        let mut seen = [0, 0, 0];
+        let samples = silhouette_samples(&s, &model);
+        for smp in samples.iter().filter(|x| x.patch() >= 8) {
+            let Sample::Silhouette {
+                patch,
+                at,
+                interval,
+                ..
+            } = smp
+            else {
+                unreachable!()
+            };
+            let mut mid = Rational::from(&interval[0] + &interval[1]);
+            mid >>= 1u32;
+            let pt = model.patches[*patch]
+                .surface
+                .eval(at, &mid)
+                .map(|c| c.to_f64());
+            // Analytic: the ray P − t d (t > 0, toward the viewer) meets the unit sphere at
+            // the origin iff |P − t d|² = 1 has a positive root; then it crosses two sheets.
+            let pd = crate::geometry::vec3::dot(pt, d);
+            let disc = pd * pd - (crate::geometry::vec3::dot(pt, pt) - 1.0);
+            let hidden = disc > 0.0 && pd > 0.0;
+            // Samples within 1e-6 of the first sphere's outline are not asserted.
+            if disc.abs() < 1e-6 {
+                continue;
+            }
+            let n = layers_in_front(&s, smp, &RayOptions::default())
+                .unwrap_or_else(|e| panic!("{e}: {patch} {at} {mid}"));
+            assert_eq!(n, if hidden { 2 } else { 0 }, "{smp:?} at {pt:?}");
+            seen[n] += 1;
+        }
+        assert!(seen[0] > 0 && seen[2] > 0, "{seen:?}");
+    }
+}

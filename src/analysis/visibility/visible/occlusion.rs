@@ -1,0 +1,1305 @@
+//! Occlusion curves: where a visible outline piece hides the surface right behind it
+//! (paper 000, section 4, made certified: `proofs/visible-regions.md`, claim 4).
+//!
+//! A visible piece of the outline (a silhouette, a free side or a fold edge, QI 0) has, on
+//! the ray through each of its points, a first surface point behind it. On the far side of
+//! the piece in the image that point is visible, on the near side it is hidden by the piece's
+//! own sheet: the curve these points trace is a boundary of the visible region of the surface
+//! behind. The hidden-line drawing finds the first point behind at one sample of the piece
+//! ([`crate::analysis::visibility::hlr::Behind`]); between its cuts no outline crosses the piece in the
+//! image, so that sheet stays first behind all along it (claim 4 (c)).
+//!
+//! The curve is followed from the sample along the piece's drawn polyline: each drawn point's
+//! image is lifted onto the patch behind by Newton's method, crossing to the next patch where
+//! the lift leaves one across a continuing edge (a *window* proven on both patches, (f)). It
+//! is certified with the piece's own proven drawing error `e` (every chord within `e` of its
+//! stretch of the true piece, pointwise): Krawczyk's operator with the image point as an
+//! interval parameter proves, for each chord's tube, a parameter box `W` that holds exactly
+//! one preimage of every image point of the tube (d), chained from the sample's point behind
+//! through the boxes of the vertices. The distance between the true curve and the drawn chord
+//! is then bounded by the piece's error lifted through the inverse Jacobian over `W`, plus the
+//! second-order terms of the chord (e). Near a fold of the surface behind the first term grows
+//! without bound: those stretches are reported with their bound, or unproven.
+
+use crate::analysis::chords::plane_curve::{derivs, partials_on, SurfaceBounds};
+use crate::analysis::contour::drawing::DrawPatch;
+use crate::analysis::projection::{side_point_f64, Projection};
+use crate::analysis::visibility::scene::Scene;
+use crate::analysis::visibility::sheets::range_on;
+use crate::bernstein::Bernstein;
+use crate::model::Model;
+use crate::number::{Interval, Number, Precision};
+use crate::solver::system::inverse;
+use crate::surface::{Edge, RationalPatch};
+use rayon::prelude::*;
+
+type IPoly = Bernstein<Interval>;
+type FPoly = Bernstein<f64>;
+
+/// The image of a chord's tube: the image segment from `a` to `a + d` (the image of the drawn
+/// chord: a projection maps segments to segments) grown by `r` per image coordinate (the drawn
+/// chord's error `e` times a bound on the image map's gradient), and its bounding box.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Tube {
+    a: [Interval; 2],
+    d: [Interval; 2],
+    r: [f64; 2],
+    hull: [Interval; 2],
+}
+
+/// One patch's polynomials for lifting image points onto it.
+pub(crate) struct LiftPatch {
+    /// Image numerators and denominator `x, y, q` (outward intervals) with their first and
+    /// second partials: `[f, f_u, f_v, f_uu, f_uv, f_vv]`.
+    jets: [[IPoly; 6]; 3],
+    /// Bounds on the derivatives of the patch's points.
+    surface: SurfaceBounds,
+    /// The same in f64, for Newton's method.
+    f: [FPoly; 3],
+    df: [[FPoly; 2]; 3],
+    /// The homogeneous space coordinates `X, Y, Z, W`.
+    space: [IPoly; 4],
+}
+
+impl LiftPatch {
+    pub(crate) fn new(scene: &Scene, patch: &RationalPatch, j: usize) -> LiftPatch {
+        let im = &scene.images[j];
+        let exact = [&im.x, &im.y, &im.q];
+        let ders = exact.map(|p| [p.deriv(0), p.deriv(1)]);
+        LiftPatch {
+            jets: exact.map(derivs),
+            surface: SurfaceBounds::new(patch),
+            f: exact.map(|p| p.convert(Precision::F64)),
+            df: ders.map(|d| d.map(|p| p.convert::<f64>(Precision::F64))),
+            space: patch.homogeneous().map(|p| p.convert(Precision::F64)),
+        }
+    }
+
+    /// The point of the patch (extended beyond its square) with image `y`, by Newton's
+    /// method from `w`: `None` if it does not converge.
+    pub(crate) fn newton(&self, y: [f64; 2], mut w: [f64; 2]) -> Option<[f64; 2]> {
+        let mut last = f64::INFINITY;
+        for _ in 0..50 {
+            let ev = |p: &FPoly| p.eval(&w);
+            let q = ev(&self.f[2]);
+            let r = [ev(&self.f[0]) - y[0] * q, ev(&self.f[1]) - y[1] * q];
+            let jac: [[f64; 2]; 2] = std::array::from_fn(|k| {
+                std::array::from_fn(|a| ev(&self.df[k][a]) - y[k] * ev(&self.df[2][a]))
+            });
+            let det = jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0];
+            if det == 0.0 || !det.is_finite() {
+                return None;
+            }
+            let step = [
+                (jac[1][1] * r[0] - jac[0][1] * r[1]) / det,
+                (jac[0][0] * r[1] - jac[1][0] * r[0]) / det,
+            ];
+            w = [w[0] - step[0], w[1] - step[1]];
+            if !(w[0].is_finite() && w[1].is_finite()) || w[0].abs() > 4.0 || w[1].abs() > 4.0 {
+                return None;
+            }
+            last = step[0].abs().max(step[1].abs());
+            if last <= 1e-15 * (1.0 + w[0].abs().max(w[1].abs())) {
+                return Some(w);
+            }
+        }
+        // Steps at the level of rounding: converged as far as f64 allows.
+        (last < 1e-11).then_some(w)
+    }
+
+    /// Krawczyk's test with the image point as a parameter: whether every image point in
+    /// `y` has exactly one preimage in the parameter box `[lo, hi]` (which may reach past the
+    /// square: the polynomials are defined everywhere). `proofs/visible-regions.md`, claim 4.
+    pub(crate) fn unique_preimages(&self, t: &Tube, lo: [f64; 2], hi: [f64; 2]) -> bool {
+        let y = t.hull;
+        let m = [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])];
+        let yc = [0.5 * (y[0].lo() + y[0].hi()), 0.5 * (y[1].lo() + y[1].hi())];
+        // C: the inverse of the point Jacobian at the centre (any matrix keeps the test sound).
+        let jm: Vec<Vec<f64>> = (0..2)
+            .map(|k| {
+                (0..2)
+                    .map(|a| self.df[k][a].eval(&m) - yc[k] * self.df[2][a].eval(&m))
+                    .collect()
+            })
+            .collect();
+        let Some(c) = inverse(&jm) else {
+            return false;
+        };
+        // C G(m; y) for y = a + μ d + δ (μ ∈ [0, 1], |δ_k| ≤ r_k), term by term, so that a
+        // chord that is diagonal in the image does not count as its whole bounding box.
+        let g_a = self.residual(m, t.a);
+        let q_m = self.jets[2][0].eval(&m.map(Interval::point));
+        let jw = self.jacobian_on(y, lo, hi);
+        let dw = [0, 1].map(|a| Interval::new(lo[a] - m[a], hi[a] - m[a]));
+        (0..2).all(|r| {
+            let ci = [Interval::point(c[r][0]), Interval::point(c[r][1])];
+            let along = q_m.mul(&ci[0].mul(&t.d[0]).add(&ci[1].mul(&t.d[1])));
+            let along = Interval::new(along.lo().min(0.0), along.hi().max(0.0));
+            let spread = q_m
+                .mul(&Interval::point(c[r][0].abs()).mul(&Interval::point(t.r[0])))
+                .add(&q_m.mul(&Interval::point(c[r][1].abs()).mul(&Interval::point(t.r[1]))));
+            let m_spread = spread.hi().abs().max(spread.lo().abs());
+            let cg = ci[0]
+                .mul(&g_a[0])
+                .add(&ci[1].mul(&g_a[1]))
+                .sub(&along)
+                .add(&Interval::new(-m_spread, m_spread));
+            let mut k = Interval::point(m[r]).sub(&cg);
+            for (a, d) in dw.iter().enumerate() {
+                let cj = ci[0].mul(&jw[0][a]).add(&ci[1].mul(&jw[1][a]));
+                let e = Interval::point(if r == a { 1.0 } else { 0.0 }).sub(&cj);
+                k = k.add(&e.mul(d));
+            }
+            lo[r] < k.lo() && k.hi() < hi[r]
+        })
+    }
+
+    /// `G(w; y) = (x(w) − y₀ q(w), y(w) − y₁ q(w))` at a point, for every `y` in the box.
+    fn residual(&self, w: [f64; 2], y: [Interval; 2]) -> [Interval; 2] {
+        let wi = w.map(Interval::point);
+        let q = self.jets[2][0].eval(&wi);
+        [0, 1].map(|k| self.jets[k][0].eval(&wi).sub(&y[k].mul(&q)))
+    }
+
+    /// The Jacobian of `G(·; y)` over a parameter box, for every `y` in the image box.
+    fn jacobian_on(&self, y: [Interval; 2], lo: [f64; 2], hi: [f64; 2]) -> [[Interval; 2]; 2] {
+        let rq = [0, 1].map(|a| range_on(&self.jets[2][1 + a], &lo, &hi));
+        std::array::from_fn(|k| {
+            std::array::from_fn(|a| range_on(&self.jets[k][1 + a], &lo, &hi).sub(&y[k].mul(&rq[a])))
+        })
+    }
+
+    /// An enclosure of the patch's points over a parameter box.
+    pub(crate) fn space_box(&self, lo: [f64; 2], hi: [f64; 2]) -> Option<([f64; 3], [f64; 3])> {
+        let r = self.space.clone().map(|p| range_on(&p, &lo, &hi));
+        let mut out = ([0.0; 3], [0.0; 3]);
+        for k in 0..3 {
+            let c = r[k].checked_div(&r[3])?;
+            out.0[k] = c.lo();
+            out.1[k] = c.hi();
+        }
+        Some(out)
+    }
+}
+
+/// An occlusion curve on one patch: a stretch of the lift of a visible outline piece.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct OcclusionRun {
+    /// The patch the curve lies on (the surface right behind the piece).
+    pub patch: usize,
+    /// Its points (u, v) on that patch (in its square).
+    pub uv: Vec<[f64; 2]>,
+    /// The same points in space.
+    pub xyz: Vec<[f64; 3]>,
+    /// A proven bound on the Hausdorff distance in space between the drawn polyline and the
+    /// true curve on this patch, or `None`.
+    pub error_bound: Option<f64>,
+    /// Why it is not certified, if it is not.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub reason: Option<String>,
+}
+
+/// A vertex of a lift: a point of the piece's drawn polyline and its lift.
+#[derive(Clone, Copy, Debug)]
+struct Vertex {
+    x: [f64; 3],
+    w: [f64; 2],
+}
+
+/// Where the lift crosses a continuing edge from patch `from` to patch `to`: three points
+/// of the drawn polyline around the crossing (`x*` where the drawn lift meets the side) and
+/// their lifts on both patches (each extended past its square).
+#[derive(Clone, Debug)]
+struct Window {
+    from: usize,
+    to: usize,
+    /// The side of `from` and of `to` the lift crosses, and whether they run opposite.
+    edges: (Edge, Edge, bool),
+    /// `x₋, x*, x₊` in walking order.
+    x: [[f64; 3]; 3],
+    /// Their lifts on `from` and on `to`.
+    w_from: [[f64; 2]; 3],
+    w_to: [[f64; 2]; 3],
+}
+
+/// A run of the lift on one patch, before certification.
+struct Run {
+    patch: usize,
+    /// The vertices in walking order (with a window at an end, its `x*` is that end).
+    vertices: Vec<Vertex>,
+    /// The windows at its start and at its end (indices into the walk's windows).
+    start: Option<usize>,
+    end: Option<usize>,
+    /// Why the run is not certified, found while following it.
+    reason: Option<String>,
+}
+
+/// A lift followed from a start vertex in one direction.
+struct Walk {
+    runs: Vec<Run>,
+    windows: Vec<Window>,
+}
+
+/// What lifting needs of the scene: per patch its lifting polynomials and its drawing
+/// evaluator.
+pub(crate) struct Lifting<'a> {
+    pub scene: &'a Scene,
+    pub patches: Vec<LiftPatch>,
+    pub draws: Vec<DrawPatch>,
+}
+
+impl<'a> Lifting<'a> {
+    /// Converts (once) every patch of the model.
+    pub(crate) fn new(model: &Model, scene: &'a Scene) -> Lifting<'a> {
+        Lifting {
+            scene,
+            patches: (0..model.patches.len())
+                .into_par_iter()
+                .map(|j| LiftPatch::new(scene, &model.patches[j].surface, j))
+                .collect(),
+            draws: model
+                .patches
+                .iter()
+                .map(|p| DrawPatch::new(&p.surface))
+                .collect(),
+        }
+    }
+}
+
+const INSIDE_SLACK: f64 = 1e-12;
+
+fn inside(w: [f64; 2]) -> bool {
+    w.iter()
+        .all(|c| (-INSIDE_SLACK..=1.0 + INSIDE_SLACK).contains(c))
+}
+
+fn clamp(w: [f64; 2]) -> [f64; 2] {
+    w.map(|c| c.clamp(0.0, 1.0))
+}
+
+fn lerp(a: [f64; 3], b: [f64; 3], t: f64) -> [f64; 3] {
+    std::array::from_fn(|k| a[k] + t * (b[k] - a[k]))
+}
+
+/// The side of the square nearest a parameter point, with its parameter.
+fn nearest_side(w: [f64; 2]) -> (Edge, f64) {
+    let d = [
+        w[1].abs(),
+        (w[0] - 1.0).abs(),
+        (w[1] - 1.0).abs(),
+        w[0].abs(),
+    ];
+    let k = (0..4).min_by(|&a, &b| d[a].total_cmp(&d[b])).unwrap_or(0);
+    match k {
+        0 => (Edge::V0, w[0]),
+        1 => (Edge::U1, w[1]),
+        2 => (Edge::V1, w[0]),
+        _ => (Edge::U0, w[1]),
+    }
+}
+
+/// The fixed coordinate of a side, its value, and the side's free coordinate.
+fn side_axes(e: Edge) -> (usize, f64, usize) {
+    match e {
+        Edge::V0 => (1, 0.0, 0),
+        Edge::V1 => (1, 1.0, 0),
+        Edge::U0 => (0, 0.0, 1),
+        Edge::U1 => (0, 1.0, 1),
+    }
+}
+
+/// A parameter box, `[lo, hi]` per coordinate.
+type PBox = [[f64; 2]; 2];
+
+fn apart_from_square(b: &PBox) -> bool {
+    b.iter().any(|r| r[1] < 0.0 || r[0] > 1.0)
+}
+
+fn hull(a: &PBox, b: &PBox) -> PBox {
+    [0, 1].map(|k| [a[k][0].min(b[k][0]), a[k][1].max(b[k][1])])
+}
+
+/// The box grown on every side by `frac` times its larger extent, plus `abs` (the preimage of
+/// an image box around a chord that is diagonal in the image is wide in both parameters even
+/// where the chord's lift runs along one of them).
+fn grown(b: &PBox, frac: f64, abs: f64) -> PBox {
+    let extent = (b[0][1] - b[0][0]).max(b[1][1] - b[1][0]);
+    let g = frac * extent + abs;
+    b.map(|r| [r[0] - g, r[1] + g])
+}
+
+/// The sides of the square a box reaches past.
+fn sides_crossed(b: &PBox) -> Vec<Edge> {
+    let mut out = Vec::new();
+    if b[1][0] < 0.0 {
+        out.push(Edge::V0);
+    }
+    if b[0][1] > 1.0 {
+        out.push(Edge::U1);
+    }
+    if b[1][1] > 1.0 {
+        out.push(Edge::V1);
+    }
+    if b[0][0] < 0.0 {
+        out.push(Edge::U0);
+    }
+    out
+}
+
+impl Lifting<'_> {
+    fn projection(&self) -> &Projection {
+        &self.scene.projection
+    }
+
+    /// The image of a space point (f64, for Newton's targets).
+    fn image(&self, x: [f64; 3]) -> Option<[f64; 2]> {
+        let i = self.projection().image_of_box(x, x)?;
+        Some([0.5 * (i[0].lo() + i[0].hi()), 0.5 * (i[1].lo() + i[1].hi())])
+    }
+
+    fn lift(&self, p: usize, x: [f64; 3], from: [f64; 2]) -> Option<[f64; 2]> {
+        self.patches[p].newton(self.image(x)?, from)
+    }
+
+    /// The image enclosure of the box around points grown by `e`.
+    /// `pts` are collinear points of one drawn chord (its first and last span it).
+    fn tube(&self, pts: &[[f64; 3]], e: f64) -> Option<Tube> {
+        let mut lo = [f64::INFINITY; 3];
+        let mut hi = [f64::NEG_INFINITY; 3];
+        for p in pts {
+            for k in 0..3 {
+                lo[k] = lo[k].min(p[k]);
+                hi[k] = hi[k].max(p[k]);
+            }
+        }
+        let lo = lo.map(|x| Interval::point(x).sub(&Interval::point(e)).lo());
+        let hi = hi.map(|x| Interval::point(x).add(&Interval::point(e)).hi());
+        let proj = self.projection();
+        let (first, last) = (pts.first()?, pts.last()?);
+        let a = proj.image_of_box(*first, *first)?;
+        let b = proj.image_of_box(*last, *last)?;
+        let grad = proj.image_gradient_bound(lo, hi)?;
+        let r = grad.map(|g| Interval::point(g).mul(&Interval::point(e)).hi());
+        let d = [0, 1].map(|k| b[k].sub(&a[k]));
+        let hull = [0, 1].map(|k| {
+            let h = a[k].hull(&b[k]);
+            Interval::new(
+                Interval::point(h.lo()).sub(&Interval::point(r[k])).lo(),
+                Interval::point(h.hi()).add(&Interval::point(r[k])).hi(),
+            )
+        });
+        Some(Tube { a, d, r, hull })
+    }
+
+    /// Follows the lift of a polyline from its first point (lifted to `w` on `patch`),
+    /// crossing continuing edges.
+    fn walk(&self, points: &[[f64; 3]], patch: usize, w: [f64; 2], e: f64) -> Walk {
+        let mut walk = Walk {
+            runs: vec![Run {
+                patch,
+                vertices: vec![Vertex { x: points[0], w }],
+                start: None,
+                end: None,
+                reason: None,
+            }],
+            windows: Vec::new(),
+        };
+        for (i, &xb) in points.iter().enumerate().skip(1) {
+            let last = i + 1 == points.len();
+            loop {
+                let run = walk.runs.last_mut().expect("a run");
+                let a = *run.vertices.last().expect("a vertex");
+                let p = run.patch;
+                let Some(wb) = self.lift(p, xb, a.w) else {
+                    run.reason = Some(format!(
+                        "the lift onto patch {p} is lost (Newton's method does not converge)"
+                    ));
+                    return walk;
+                };
+                if inside(wb) {
+                    run.vertices.push(Vertex { x: xb, w: wb });
+                    break;
+                }
+                // The lift leaves the patch: where along the chord, by bisection.
+                let (mut lo, mut hi, mut w_lo) = (0.0f64, 1.0f64, a.w);
+                for _ in 0..50 {
+                    let mid = 0.5 * (lo + hi);
+                    match self.lift(p, lerp(a.x, xb, mid), w_lo) {
+                        Some(wm) if inside(wm) => {
+                            lo = mid;
+                            w_lo = wm;
+                        }
+                        _ => hi = mid,
+                    }
+                }
+                let (edge, t) = nearest_side(w_lo);
+                let twins = self.scene.twins(p, edge);
+                let [(p2, e2, rev)] = twins[..] else {
+                    // The piece's own end, on an outline side of the patch behind (where the
+                    // piece is cut): its lift is drawn clamped into the square.
+                    if last {
+                        run.vertices.push(Vertex { x: xb, w: wb });
+                        break;
+                    }
+                    run.reason = Some(format!(
+                        "the lift leaves patch {p} across its side {edge:?}, not an edge shared by exactly two patches"
+                    ));
+                    return walk;
+                };
+                let t2 = if rev { 1.0 - t } else { t };
+                let x_star = lerp(a.x, xb, lo);
+                let Some(w2) = self.lift(p2, x_star, side_point_f64(e2, t2)) else {
+                    run.reason = Some(format!("the lift is lost where it crosses to patch {p2}"));
+                    return walk;
+                };
+                // A window around the crossing, within the chord, wide enough that the lifts
+                // of its ends are farther from the crossed sides than the vertex boxes reach.
+                let reach = |q: usize, w: [f64; 2]| {
+                    self.vertex_box(q, x_star, w, e)
+                        .map_or(0.0, |b| b.iter().map(|r| r[1] - r[0]).fold(0.0, f64::max))
+                };
+                let need = 3.0 * reach(p, w_lo).max(reach(p2, w2));
+                let beyond = |w: [f64; 2]| {
+                    w.iter()
+                        .map(|c| (-c).max(c - 1.0))
+                        .fold(f64::NEG_INFINITY, f64::max)
+                };
+                let on = |q: usize, from: [f64; 2], xs: &[[f64; 3]; 3]| {
+                    Some([
+                        self.lift(q, xs[0], from)?,
+                        self.lift(q, xs[1], from)?,
+                        self.lift(q, xs[2], from)?,
+                    ])
+                };
+                let mut delta = 1e-3;
+                let found = loop {
+                    let (l0, l1) = ((lo - delta).max(0.0), (lo + delta).min(1.0));
+                    let xs = [lerp(a.x, xb, l0), x_star, lerp(a.x, xb, l1)];
+                    let lifted = on(p, w_lo, &xs).zip(on(p2, w2, &xs));
+                    let Some((w_from, w_to)) = lifted else {
+                        break None;
+                    };
+                    let wide = beyond(w_from[2]) > need && beyond(w_to[0]) > need;
+                    if wide || (l0 == 0.0 && l1 == 1.0) {
+                        break Some((l0, l1, xs, w_from, w_to));
+                    }
+                    delta *= 2.0;
+                };
+                let Some((l0, l1, xs, w_from, w_to)) = found else {
+                    run.reason = Some(format!(
+                        "the lift is lost where it crosses from patch {p} to patch {p2}"
+                    ));
+                    return walk;
+                };
+                let k = walk.windows.len();
+                if l0 > 0.0 {
+                    run.vertices.push(Vertex {
+                        x: xs[0],
+                        w: w_from[0],
+                    });
+                }
+                run.vertices.push(Vertex {
+                    x: x_star,
+                    w: w_from[1],
+                });
+                run.end = Some(k);
+                walk.windows.push(Window {
+                    from: p,
+                    to: p2,
+                    edges: (edge, e2, rev),
+                    x: xs,
+                    w_from,
+                    w_to,
+                });
+                let vertices = vec![
+                    Vertex {
+                        x: x_star,
+                        w: w_to[1],
+                    },
+                    Vertex {
+                        x: xs[2],
+                        w: w_to[2],
+                    },
+                ];
+                walk.runs.push(Run {
+                    patch: p2,
+                    vertices,
+                    start: Some(k),
+                    end: None,
+                    reason: None,
+                });
+                if l1 >= 1.0 {
+                    // x₊ is xb itself.
+                    break;
+                }
+            }
+        }
+        walk
+    }
+}
+
+impl Window {
+    /// The same window walked the other way.
+    fn reversed(&self) -> Window {
+        let r3 = |a: [[f64; 2]; 3]| [a[2], a[1], a[0]];
+        Window {
+            from: self.to,
+            to: self.from,
+            edges: (self.edges.1, self.edges.0, self.edges.2),
+            x: [self.x[2], self.x[1], self.x[0]],
+            w_from: r3(self.w_to),
+            w_to: r3(self.w_from),
+        }
+    }
+}
+
+impl Walk {
+    /// The same lift walked the other way.
+    fn reversed(mut self) -> Walk {
+        self.runs.reverse();
+        for r in &mut self.runs {
+            r.vertices.reverse();
+            std::mem::swap(&mut r.start, &mut r.end);
+        }
+        self.windows = self.windows.iter().map(Window::reversed).collect();
+        self
+    }
+
+    /// `self` (ending at the anchor) followed by `next` (starting there, on the same patch).
+    fn joined(mut self, next: Walk) -> Walk {
+        let offset = self.windows.len();
+        self.windows.extend(next.windows);
+        let mut runs = next.runs.into_iter().map(|mut r| {
+            r.start = r.start.map(|k| k + offset);
+            r.end = r.end.map(|k| k + offset);
+            r
+        });
+        if let (Some(last), Some(first)) = (self.runs.last_mut(), runs.next()) {
+            last.vertices.extend(first.vertices.into_iter().skip(1));
+            last.end = first.end;
+            last.reason = last.reason.take().or(first.reason);
+        }
+        self.runs.extend(runs);
+        self
+    }
+}
+
+/// A run certified: its vertices (clamped to the square) and per chord its bound before
+/// rounding (`None`: not proven).
+type ProvenRun = (Vec<[f64; 2]>, Vec<Option<f64>>);
+
+/// Where the lift is anchored: the first point behind the piece's sample.
+pub(crate) struct Anchor {
+    /// The patch behind and an enclosure of the point's parameters there.
+    pub patch: usize,
+    pub uv: PBox,
+    /// An enclosure of the sample point in space.
+    pub sample: ([f64; 3], [f64; 3]),
+}
+
+/// A chord proven: its box, and the tube's space box (for the anchor).
+struct Proven {
+    /// The chord's index along the walk (a window's: its index, encoded, until placed).
+    chord: usize,
+    /// For a window's box: 0 on the patch before the crossing, 1 after.
+    window_side: usize,
+    patch: usize,
+    w: PBox,
+    space: ([f64; 3], [f64; 3]),
+}
+
+fn boxes_meet(a: &([f64; 3], [f64; 3]), b: &([f64; 3], [f64; 3])) -> bool {
+    (0..3).all(|k| a.0[k] <= b.1[k] && b.0[k] <= a.1[k])
+}
+
+fn point_distance(a: [f64; 3], b: [f64; 3]) -> f64 {
+    (0..3).map(|k| (a[k] - b[k]).powi(2)).sum::<f64>().sqrt()
+}
+
+/// The deepest bisection of a chord whose box is not proven.
+const MAX_SPLITS: u32 = 6;
+
+impl Lifting<'_> {
+    /// A box around `w` holding exactly one preimage of every image point of the tube
+    /// around `x` (on patch `p`), or `None`.
+    fn vertex_box(&self, p: usize, x: [f64; 3], w: [f64; 2], e: f64) -> Option<PBox> {
+        let t = self.tube(&[x], e)?;
+        let y = t.hull;
+        let lp = &self.patches[p];
+        let half = y[0].width().max(y[1].width()) * 0.5;
+        // The spread of the preimages: about |J⁻¹| times the tube's half-width.
+        let m: Vec<Vec<f64>> = (0..2)
+            .map(|k| {
+                let yc = 0.5 * (y[k].lo() + y[k].hi());
+                (0..2)
+                    .map(|a| lp.df[k][a].eval(&w) - yc * lp.df[2][a].eval(&w))
+                    .collect()
+            })
+            .collect();
+        let inv = inverse(&m)?;
+        let norm = inv
+            .iter()
+            .map(|r| r[0].abs() + r[1].abs())
+            .fold(0.0, f64::max);
+        let r0 = norm * half + 1e-13 * (1.0 + w[0].abs().max(w[1].abs()));
+        [2.0, 4.0, 16.0, 64.0].into_iter().find_map(|k| {
+            let b = w.map(|c| [c - k * r0, c + k * r0]);
+            lp.unique_preimages(&t, [b[0][0], b[1][0]], [b[0][1], b[1][1]])
+                .then_some(b)
+        })
+    }
+
+    /// A box holding the vertex boxes of both ends and exactly one preimage of every image
+    /// point of the chord's tube, or `None`.
+    fn chord_box(&self, p: usize, xs: &[[f64; 3]], ends: &[PBox], e: f64) -> Option<PBox> {
+        let t = self.tube(xs, e)?;
+        let h = ends.iter().skip(1).fold(ends[0], |acc, b| hull(&acc, b));
+        // An axis-aligned image box maps to a parallelogram in parameters: a box that holds
+        // it may have to reach well past the hull of the ends.
+        [0.01, 0.1, 0.5, 1.0].into_iter().find_map(|g| {
+            let b = grown(&h, g, 1e-13);
+            self.patches[p]
+                .unique_preimages(&t, [b[0][0], b[1][0]], [b[0][1], b[1][1]])
+                .then_some(b)
+        })
+    }
+
+    /// The space box of a chord's tube.
+    fn space_tube(xs: &[[f64; 3]], e: f64) -> ([f64; 3], [f64; 3]) {
+        let mut lo = [f64::INFINITY; 3];
+        let mut hi = [f64::NEG_INFINITY; 3];
+        for p in xs {
+            for k in 0..3 {
+                lo[k] = lo[k].min(p[k] - 2.0 * e);
+                hi[k] = hi[k].max(p[k] + 2.0 * e);
+            }
+        }
+        (lo, hi)
+    }
+
+    /// A bound on the Hausdorff distance in space between the drawn chord between the points
+    /// of patch `p` at `clamp(a.w)` and `clamp(b.w)` and the true curve's points on the
+    /// extended patch over the chord of the piece from `a.x` to `b.x` (before the drawn
+    /// points' rounding), given a box `w` proven to hold exactly one preimage of every image
+    /// point of the chord's tube and the lifts of its ends (`proofs/visible-regions.md`,
+    /// claim 4, "The chord bound").
+    fn chord_bound(&self, p: usize, w: &PBox, a: Vertex, b: Vertex, e: f64) -> Option<[f64; 2]> {
+        let lp = &self.patches[p];
+        let (lo, hi) = ([w[0][0], w[1][0]], [w[0][1], w[1][1]]);
+        let pi = Interval::point;
+        let mag = |x: Interval| x.lo().abs().max(x.hi().abs());
+        let y = self.tube(&[a.x, b.x], e)?.hull;
+        // The inverse of the Jacobian over the box, by its adjugate.
+        let j = lp.jacobian_on(y, lo, hi);
+        let det = j[0][0].mul(&j[1][1]).sub(&j[0][1].mul(&j[1][0]));
+        let inv = [
+            [j[1][1], pi(0.0).sub(&j[0][1])],
+            [pi(0.0).sub(&j[1][0]), j[0][0]],
+        ]
+        .map(|r| r.map(|x| x.checked_div(&det)));
+        let m: [[f64; 2]; 2] = [0, 1].map(|i| [0, 1].map(|k| inv[i][k].map_or(f64::INFINITY, mag)));
+        let apply = |g: [f64; 2]| -> [f64; 2] {
+            [0, 1].map(|i| {
+                pi(m[i][0])
+                    .mul(&pi(g[0]))
+                    .add(&pi(m[i][1]).mul(&pi(g[1])))
+                    .hi()
+            })
+        };
+        // The tube's image radius per coordinate, times |q|.
+        let mut slo = [0.0; 3];
+        let mut shi = [0.0; 3];
+        for k in 0..3 {
+            slo[k] = pi(a.x[k].min(b.x[k])).sub(&pi(e)).lo();
+            shi[k] = pi(a.x[k].max(b.x[k])).add(&pi(e)).hi();
+        }
+        let grad = self.projection().image_gradient_bound(slo, shi)?;
+        let q_max = mag(range_on(&lp.jets[2][0], &lo, &hi));
+        let g1 = grad.map(|gk| pi(gk).mul(&pi(e)).mul(&pi(q_max)).hi());
+        // G along the drawn chord in parameters: its values at the ends (Newton's residuals)
+        // plus an eighth of its second derivative.
+        let ya = self.projection().image_of_box(a.x, a.x)?;
+        let yb = self.projection().image_of_box(b.x, b.x)?;
+        let (ra, rb) = (lp.residual(a.w, ya), lp.residual(b.w, yb));
+        let dw = [0, 1].map(|k| pi(b.w[k]).sub(&pi(a.w[k])));
+        let second = |f: &[IPoly; 6]| -> (Interval, Interval) {
+            let [fu, fv, fuu, fuv, fvv] = partials_on(f, &lo, &hi);
+            let d1 = fu.mul(&dw[0]).add(&fv.mul(&dw[1]));
+            let d2 = fuu
+                .mul(&dw[0])
+                .mul(&dw[0])
+                .add(&pi(2.0).mul(&fuv).mul(&dw[0]).mul(&dw[1]))
+                .add(&fvv.mul(&dw[1]).mul(&dw[1]));
+            (d1, d2)
+        };
+        let (q1, q2) = second(&lp.jets[2]);
+        let g2: [f64; 2] = std::array::from_fn(|k| {
+            let (_, x2) = second(&lp.jets[k]);
+            let yk = ya[k].hull(&yb[k]);
+            let dy = yb[k].sub(&ya[k]);
+            let phi2 = x2.sub(&yk.mul(&q2)).sub(&pi(2.0).mul(&dy).mul(&q1));
+            let ends = mag(ra[k]).max(mag(rb[k]));
+            pi(ends).add(&pi(mag(phi2)).mul(&pi(0.125))).hi()
+        });
+        let (d1, d2) = (apply(g1), apply(g2));
+        // Clamping the drawn ends into the square moves them (and the chord) at most this.
+        let clamp_shift = [a.w, b.w]
+            .iter()
+            .map(|w| (clamp(*w)[0] - w[0]).abs().max((clamp(*w)[1] - w[1]).abs()))
+            .fold(0.0, f64::max);
+        let delta = [0, 1].map(|k| pi(d1[k]).add(&pi(d2[k])).add(&pi(clamp_shift)).hi());
+        let ([s_u, s_uu, s_uv, s_vv], s_v) = lp.surface.bounds_both(lo, hi, 0)?;
+        let first = pi(s_u).mul(&pi(delta[0])).add(&pi(s_v).mul(&pi(delta[1])));
+        let (ca, cb) = (clamp(a.w), clamp(b.w));
+        let (du, dv) = (
+            pi(cb[0])
+                .sub(&pi(ca[0]))
+                .hi()
+                .abs()
+                .max(pi(cb[0]).sub(&pi(ca[0])).lo().abs()),
+            pi(cb[1])
+                .sub(&pi(ca[1]))
+                .hi()
+                .abs()
+                .max(pi(cb[1]).sub(&pi(ca[1])).lo().abs()),
+        );
+        let interp = pi(s_uu)
+            .mul(&pi(du * du))
+            .add(&pi(2.0 * s_uv).mul(&pi(du * dv)))
+            .add(&pi(s_vv).mul(&pi(dv * dv)))
+            .mul(&pi(0.125));
+        let bound = first.add(&interp).hi() * (1.0 + 1e-12);
+        // The part that shorter chords cannot reduce: the piece's own drawing error, lifted.
+        let floor = pi(s_u).mul(&pi(d1[0])).add(&pi(s_v).mul(&pi(d1[1]))).hi();
+        bound.is_finite().then_some([bound, floor])
+    }
+
+    /// Whether a box of patch `p` reaches past a side that is an edge continuing into one
+    /// other patch (other than `allowed`).
+    fn crosses_continuing(&self, p: usize, b: &PBox, allowed: Option<Edge>) -> bool {
+        sides_crossed(b)
+            .into_iter()
+            .any(|s| Some(s) != allowed && self.scene.twins(p, s).len() == 1)
+    }
+
+    /// Proves one chord of a run on patch `p` (bisecting it where needed): pushes the
+    /// vertices after `a` (ending with `b`), each chord's bound (`None` if not proven) and the
+    /// proven chords' boxes (numbered by their place in `bounds`).
+    #[allow(clippy::too_many_arguments)]
+    fn prove_chord(
+        &self,
+        p: usize,
+        a: (Vertex, PBox),
+        b: (Vertex, PBox),
+        [e, target]: [f64; 2],
+        depth: u32,
+        out: &mut Vec<Vertex>,
+        proven: &mut Vec<Proven>,
+        bounds: &mut Vec<Option<f64>>,
+    ) {
+        let xs = [a.0.x, b.0.x];
+        let ok = self
+            .chord_box(p, &xs, &[a.1, b.1], e)
+            .filter(|w| !self.crosses_continuing(p, w, None))
+            .and_then(|w| Some((w, self.chord_bound(p, &w, a.0, b.0, e)?)))
+            .filter(|(_, [d, floor])| *d <= target || *floor > 0.5 * target || depth >= MAX_SPLITS);
+        if let Some((w, [bound, _])) = ok {
+            proven.push(Proven {
+                chord: bounds.len(),
+                window_side: 0,
+                patch: p,
+                w,
+                space: Self::space_tube(&xs, e),
+            });
+            bounds.push(Some(bound));
+            out.push(b.0);
+            return;
+        }
+        let xm = lerp(a.0.x, b.0.x, 0.5);
+        let m = self.lift(p, xm, a.0.w).and_then(|wm| {
+            let vm = self.vertex_box(p, xm, wm, e)?;
+            Some((Vertex { x: xm, w: wm }, vm))
+        });
+        match m {
+            Some(m) if depth < MAX_SPLITS => {
+                let et = [e, target];
+                let marks = (out.len(), proven.len(), bounds.len());
+                self.prove_chord(p, a, m, et, depth + 1, out, proven, bounds);
+                self.prove_chord(p, m, b, et, depth + 1, out, proven, bounds);
+                // Nothing proven: one unproven chord, not the bisection's points.
+                if bounds[marks.2..].iter().all(Option::is_none) {
+                    out.truncate(marks.0);
+                    proven.truncate(marks.1);
+                    bounds.truncate(marks.2);
+                    bounds.push(None);
+                    out.push(b.0);
+                }
+            }
+            _ => {
+                bounds.push(None);
+                out.push(b.0);
+            }
+        }
+    }
+
+    /// Proves a window: boxes on both patches and the conditions of claim 4 that make the
+    /// true curve pass from one to the other inside them. Returns the two boxes' space
+    /// diagonals.
+    fn prove_window(&self, win: &Window, e: f64, proven: &mut Vec<Proven>) -> Option<[f64; 2]> {
+        let (edge_from, edge_to, rev) = win.edges;
+        let boxes = |p: usize, ws: &[[f64; 2]; 3]| -> Option<([PBox; 3], PBox)> {
+            let v: Vec<PBox> = (0..3)
+                .map(|i| self.vertex_box(p, win.x[i], ws[i], e))
+                .collect::<Option<_>>()?;
+            let v = [v[0], v[1], v[2]];
+            let w = self.chord_box(p, &win.x, &v, e)?;
+            Some((v, w))
+        };
+        let (vf, mut wf) = boxes(win.from, &win.w_from)?;
+        let (vt, mut wt) = boxes(win.to, &win.w_to)?;
+        // The curve is on `from` before the window and on `to` after it: the lifts of x₊ on
+        // `from` and of x₋ on `to` lie outside those patches.
+        if !apart_from_square(&vf[2]) || !apart_from_square(&vt[0]) {
+            return None;
+        }
+        // Within the window it can leave either patch only across the common edge.
+        if self.crosses_continuing(win.from, &wf, Some(edge_from))
+            || self.crosses_continuing(win.to, &wt, Some(edge_to))
+        {
+            return None;
+        }
+        // Where either box meets the edge, the same points of the edge are in the other box.
+        let edge_in = |b: &PBox, edge: Edge| -> Option<[f64; 2]> {
+            let (fixed, at, free) = side_axes(edge);
+            (b[fixed][0] <= at && at <= b[fixed][1]).then_some(b[free])
+        };
+        let map = |t: [f64; 2]| {
+            if rev {
+                [1.0 - t[1], 1.0 - t[0]]
+            } else {
+                t
+            }
+        };
+        let (tf, tt) = (edge_in(&wf, edge_from)?, edge_in(&wt, edge_to)?);
+        // Both boxes get the same stretch of the edge: the union of theirs, rounded out to
+        // multiples of 2⁻⁴⁰ so that `1 − t` is exact, and are proven again.
+        let grid = (2.0f64).powi(40);
+        let r = [
+            (tf[0].min(map(tt)[0]) * grid).floor() / grid,
+            (tf[1].max(map(tt)[1]) * grid).ceil() / grid,
+        ];
+        let (free_f, free_t) = (side_axes(edge_from).2, side_axes(edge_to).2);
+        wf[free_f] = r;
+        wt[free_t] = map(r);
+        let t = self.tube(&win.x, e)?;
+        let unique = |p: usize, b: &PBox| {
+            self.patches[p].unique_preimages(&t, [b[0][0], b[1][0]], [b[0][1], b[1][1]])
+        };
+        if !unique(win.from, &wf) || !unique(win.to, &wt) {
+            return None;
+        }
+        let (tf, tt) = (edge_in(&wf, edge_from)?, edge_in(&wt, edge_to)?);
+        if map(tf) != tt {
+            return None;
+        }
+        let vertex = |i: usize, ws: &[[f64; 2]; 3]| Vertex {
+            x: win.x[i],
+            w: ws[i],
+        };
+        // On each patch, its drawn chord to or from x*, and the true points on the patch
+        // over the other half of the window: within the other half's bound of its chord on
+        // the extended patch, whose points are within |DS| times its length of x*.
+        let half = |p: usize, b: &PBox, ws: &[[f64; 2]; 3], near: [usize; 2], far: [usize; 2]| {
+            let d_near = self.chord_bound(p, b, vertex(near[0], ws), vertex(near[1], ws), e)?[0];
+            let d_far = self.chord_bound(p, b, vertex(far[0], ws), vertex(far[1], ws), e)?[0];
+            let (lo, hi) = ([b[0][0], b[1][0]], [b[0][1], b[1][1]]);
+            let ([s_u, ..], s_v) = self.patches[p].surface.bounds_both(lo, hi, 0)?;
+            let (fa, fb) = (ws[far[0]], ws[far[1]]);
+            // (The drawn end is x*'s lift clamped into the square: a shift of at most 1e-12.)
+            let reach = Interval::point(s_u)
+                .mul(&Interval::point((fb[0] - fa[0]).abs() + 1e-12))
+                .add(&Interval::point(s_v).mul(&Interval::point((fb[1] - fa[1]).abs() + 1e-12)))
+                .hi()
+                * (1.0 + 1e-12);
+            Some(d_near.max(Interval::point(d_far).add(&Interval::point(reach)).hi()))
+        };
+        let df = half(win.from, &wf, &win.w_from, [0, 1], [1, 2])?;
+        let dt = half(win.to, &wt, &win.w_to, [1, 2], [0, 1])?;
+        let space = Self::space_tube(&win.x, e);
+        proven.push(Proven {
+            chord: 0,
+            window_side: 0,
+            patch: win.from,
+            w: wf,
+            space,
+        });
+        proven.push(Proven {
+            chord: 0,
+            window_side: 1,
+            patch: win.to,
+            w: wt,
+            space,
+        });
+        Some([df, dt])
+    }
+
+    /// The occlusion curve of a piece: its drawn polyline `points` (each chord within `e` of
+    /// its stretch of the true piece; `None`: not bounded) lifted onto the surface behind
+    /// from the anchor, as runs on patches, certified where proven.
+    pub(crate) fn occlusion_curve(
+        &self,
+        points: &[[f64; 3]],
+        e: Option<f64>,
+        tol: Option<f64>,
+        anchor: &Anchor,
+    ) -> Result<Vec<OcclusionRun>, String> {
+        if points.len() < 2 {
+            return Err("the piece has fewer than two drawn points".into());
+        }
+        // The drawn vertex nearest the sample, lifted from the point behind it.
+        let s = anchor.sample;
+        let centre: [f64; 3] = std::array::from_fn(|k| 0.5 * (s.0[k] + s.1[k]));
+        let k0 = (0..points.len())
+            .min_by(|&a, &b| {
+                point_distance(points[a], centre).total_cmp(&point_distance(points[b], centre))
+            })
+            .unwrap_or(0);
+        let h = anchor.uv.map(|r| 0.5 * (r[0] + r[1]));
+        let w0 = self
+            .lift(anchor.patch, points[k0], h)
+            .ok_or("the lift from the point behind the sample does not converge")?;
+        let back: Vec<[f64; 3]> = points[..=k0].iter().rev().copied().collect();
+        let e0 = e.unwrap_or(0.0);
+        let walk = self
+            .walk(&back, anchor.patch, w0, e0)
+            .reversed()
+            .joined(self.walk(&points[k0..], anchor.patch, w0, e0));
+        let mut runs: Vec<OcclusionRun> = walk
+            .runs
+            .iter()
+            .map(|r| OcclusionRun {
+                patch: r.patch,
+                uv: r.vertices.iter().map(|v| clamp(v.w)).collect(),
+                xyz: Vec::new(),
+                error_bound: None,
+                reason: r.reason.clone(),
+            })
+            .collect();
+        let first_reason = walk.runs.iter().find_map(|r| r.reason.clone());
+        let proof = match (e.zip(tol), first_reason) {
+            (_, Some(why)) => Err(why),
+            (None, None) => Err("the piece's drawing is not bounded (no tolerance)".into()),
+            (Some((e, tol)), None) => self.prove(&walk, [e, 0.999 * tol], anchor),
+        };
+        match proof {
+            Ok(proved) => {
+                let tol = tol.unwrap_or(f64::INFINITY);
+                let mut split = Vec::new();
+                for (run, (uv, bounds)) in runs.iter().zip(proved) {
+                    let Some(r) = self.draws[run.patch].rounding() else {
+                        split.push(OcclusionRun {
+                            uv,
+                            reason: Some("the drawn points' rounding is not bounded".into()),
+                            ..run.clone()
+                        });
+                        continue;
+                    };
+                    let full: Vec<Option<f64>> = bounds
+                        .iter()
+                        .map(|b| b.map(|b| (b + r) * (1.0 + 1e-12)))
+                        .collect();
+                    // Maximal stretches of chords within the tolerance, beyond it, unproven.
+                    let class = |b: Option<f64>| match b {
+                        Some(b) if b <= tol => 0,
+                        Some(_) => 1,
+                        None => 2,
+                    };
+                    let mut i = 0;
+                    while i < full.len() {
+                        let c = class(full[i]);
+                        let mut j = i;
+                        while j + 1 < full.len() && class(full[j + 1]) == c {
+                            j += 1;
+                        }
+                        let bound = full[i..=j]
+                            .iter()
+                            .try_fold(0.0f64, |acc, b| Some(acc.max((*b)?)));
+                        let reason = match (c, bound) {
+                            (0, _) => None,
+                            (1, Some(b)) => Some(format!(
+                                "proven within {b:.2e} only, more than the tolerance (near a fold of patch {}, the lift magnifies the drawing error of the piece in front)",
+                                run.patch
+                            )),
+                            _ => Some(format!(
+                                "a stretch of the occlusion curve on patch {} is not proven (near a fold of the patch, where the lift is not unique, or not joined to the sample through proven stretches)",
+                                run.patch
+                            )),
+                        };
+                        split.push(OcclusionRun {
+                            patch: run.patch,
+                            uv: uv[i..=j + 1].to_vec(),
+                            xyz: Vec::new(),
+                            error_bound: bound,
+                            reason,
+                        });
+                        i = j + 1;
+                    }
+                }
+                runs = split;
+            }
+            Err(why) => {
+                for run in &mut runs {
+                    run.reason.get_or_insert_with(|| why.clone());
+                }
+            }
+        }
+        for run in &mut runs {
+            run.xyz = run
+                .uv
+                .iter()
+                .map(|w| self.draws[run.patch].eval(w[0], w[1]))
+                .collect();
+        }
+        Ok(runs)
+    }
+
+    /// Certifies a walk: per run, its refined vertices (clamped to the square) and per chord
+    /// a bound on its Hausdorff distance before rounding, `None` where the chord is not proven
+    /// or not joined to the anchor through proven chords.
+    fn prove(
+        &self,
+        walk: &Walk,
+        [e, target]: [f64; 2],
+        anchor: &Anchor,
+    ) -> Result<Vec<ProvenRun>, String> {
+        let mut proven: Vec<Proven> = Vec::new();
+        let windows: Vec<Option<[f64; 2]>> = walk
+            .windows
+            .iter()
+            .enumerate()
+            .map(|(k, win)| {
+                let mut own = Vec::new();
+                let b = self.prove_window(win, e, &mut own)?;
+                // The window's boxes count for the chords next to it (set below).
+                proven.extend(own.into_iter().map(|mut c| {
+                    c.chord = usize::MAX - k;
+                    c
+                }));
+                Some(b)
+            })
+            .collect();
+        let mut out = Vec::new();
+        // Chord indices along the whole walk, and each window's two chords.
+        let mut bounds_all: Vec<Option<f64>> = Vec::new();
+        let mut window_chords: Vec<[usize; 2]> = vec![[usize::MAX; 2]; walk.windows.len()];
+        for run in &walk.runs {
+            let p = run.patch;
+            let mut bounds: Vec<Option<f64>> = Vec::new();
+            let n = run.vertices.len();
+            let first = usize::from(run.start.is_some());
+            let last = if run.end.is_some() {
+                n.saturating_sub(2)
+            } else {
+                n.saturating_sub(1)
+            };
+            let mut refined = run.vertices[..=first.min(n - 1)].to_vec();
+            // The chord inside the start window.
+            if let Some(k) = run.start.filter(|_| n > 1) {
+                window_chords[k][1] = bounds_all.len() + bounds.len();
+                bounds.push(windows[k].map(|b| b[1]));
+            }
+            if first < last {
+                let vbox = |v: &Vertex| self.vertex_box(p, v.x, v.w, e);
+                let mut a = (run.vertices[first], vbox(&run.vertices[first]));
+                for v in &run.vertices[first + 1..=last] {
+                    let b = (*v, vbox(v));
+                    match (a.1, b.1) {
+                        (Some(va), Some(vb)) => {
+                            let mut local = Vec::new();
+                            self.prove_chord(
+                                p,
+                                (a.0, va),
+                                (b.0, vb),
+                                [e, target],
+                                0,
+                                &mut refined,
+                                &mut local,
+                                &mut bounds,
+                            );
+                            // `prove_chord` numbers its chords from 0 in `bounds`' order.
+                            proven.extend(local.into_iter().map(|mut c| {
+                                c.chord += bounds_all.len();
+                                c
+                            }));
+                        }
+                        _ => {
+                            refined.push(b.0);
+                            bounds.push(None);
+                        }
+                    }
+                    a = b;
+                }
+            }
+            let rest = &run.vertices[(last + 1).max(first + 1).min(n)..];
+            refined.extend_from_slice(rest);
+            // The chord inside the end window.
+            if let Some(k) = run.end.filter(|_| !rest.is_empty()) {
+                window_chords[k][0] = bounds_all.len() + bounds.len();
+                bounds.push(windows[k].map(|b| b[0]));
+            }
+            if bounds.len() + 1 != refined.len() {
+                return Err(format!(
+                    "the occlusion curve's chords on patch {p} do not match its points"
+                ));
+            }
+            bounds_all.extend(bounds.iter().copied());
+            out.push((refined.iter().map(|v| clamp(v.w)).collect(), bounds));
+        }
+        // The windows' boxes belong to their chords: the first box to the chord before the
+        // crossing, the second to the chord after it.
+        for c in &mut proven {
+            if c.chord > usize::MAX / 2 {
+                let (k, side) = (usize::MAX - c.chord, c.window_side);
+                c.chord = window_chords[k][side];
+            }
+        }
+        // The anchor: the point behind the sample lies in the box of every proven chord
+        // whose tube can hold the sample (one of them holds its stretch of the curve).
+        let holders: Vec<&Proven> = proven
+            .iter()
+            .filter(|c| c.chord != usize::MAX && boxes_meet(&c.space, &anchor.sample))
+            .collect();
+        if holders.is_empty() {
+            return Err("the sample is not within the piece's proven drawing".into());
+        }
+        let anchored = holders.iter().all(|c| {
+            c.patch == anchor.patch
+                && (0..2).all(|k| c.w[k][0] <= anchor.uv[k][0] && anchor.uv[k][1] <= c.w[k][1])
+        });
+        if !anchored {
+            return Err("the point behind the sample is not proven on the lifted sheet".into());
+        }
+        // From the anchor's chords along proven chords both ways: the rest is not joined.
+        let mut joined = vec![false; bounds_all.len()];
+        for h in &holders {
+            for range in [
+                (h.chord..bounds_all.len()).collect::<Vec<_>>(),
+                (0..=h.chord).rev().collect(),
+            ] {
+                for i in range {
+                    if bounds_all[i].is_none() {
+                        break;
+                    }
+                    joined[i] = true;
+                }
+            }
+        }
+        let mut i = 0;
+        for (_, bounds) in &mut out {
+            for b in bounds.iter_mut() {
+                if !joined[i] {
+                    *b = None;
+                }
+                i += 1;
+            }
+        }
+        Ok(out)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::view::View;
+    use crate::model::{Format, WeldTolerance};
+    use crate::number::Rational;
+    use crate::testing::shapes;
+
+    /// The parametric Krawczyk test on a chord's tube, taken term by term (the segment plus
+    /// its spread, not its bounding box): every image point of the tube that Newton's method
+    /// lifts from anywhere in a proven box lands inside it, at one point; and a box that misses
+    /// a lift of the tube is refused (dropping the term along the segment makes this fail).
+    #[test]
+    fn every_point_of_a_proven_tube_lifts_into_its_box_once() {
+        let patches = shapes::sphere(&Rational::from(1));
+        let model = Model::from_patches(Format::Json, patches);
+        let view = View::Direction([1, 2, 3].map(Rational::from));
+        let scene = Scene::new(&model, &view, WeldTolerance::Exact).unwrap();
+        let lifting = Lifting::new(&model, &scene);
+        let (lifts, draws) = (&lifting.patches, &lifting.draws);
+        let mut seed = 12345u64;
+        let mut next = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((seed >> 11) as f64) / ((1u64 << 53) as f64)
+        };
+        let (mut proven, mut checked, mut refused) = (0, 0, 0);
+        for _ in 0..40 {
+            let p = (next() * model.patches.len() as f64) as usize % model.patches.len();
+            let wa = [0.2 + 0.6 * next(), 0.2 + 0.6 * next()];
+            let wb = [wa[0] + 0.05 * (next() - 0.5), wa[1] + 0.05 * (next() - 0.5)];
+            let (xa, xb) = (draws[p].eval(wa[0], wa[1]), draws[p].eval(wb[0], wb[1]));
+            let e = 1e-5;
+            let (a, b) = (Vertex { x: xa, w: wa }, Vertex { x: xb, w: wb });
+            let (Some(va), Some(vb)) = (
+                lifting.vertex_box(p, xa, wa, e),
+                lifting.vertex_box(p, xb, wb, e),
+            ) else {
+                continue;
+            };
+            let Some(w) = lifting.chord_box(p, &[a.x, b.x], &[va, vb], e) else {
+                continue;
+            };
+            proven += 1;
+            let t = lifting.tube(&[xa, xb], e).unwrap();
+            // Soundness: a box that misses a lift of the tube (the first end's box, when the
+            // second end lifts outside it) must not pass the test.
+            let outside = (0..2).any(|k| wb[k] < va[k][0] || wb[k] > va[k][1]);
+            if outside {
+                let accepted =
+                    lifts[p].unique_preimages(&t, [va[0][0], va[1][0]], [va[0][1], va[1][1]]);
+                assert!(
+                    !accepted,
+                    "patch {p}: {va:?} accepted for the tube to {wb:?}"
+                );
+                refused += 1;
+            }
+            let mid = |i: Interval| 0.5 * (i.lo() + i.hi());
+            for _ in 0..50 {
+                // A point of the tube: on the segment, moved by at most r per coordinate.
+                let mu = next();
+                let y = [0, 1].map(|k| {
+                    mid(t.a[k]) + mu * mid(t.d[k]) + (2.0 * next() - 1.0) * t.r[k] * 0.999
+                });
+                let starts = [
+                    [w[0][0], w[1][0]],
+                    [w[0][1], w[1][1]],
+                    [0.5 * (w[0][0] + w[0][1]), 0.5 * (w[1][0] + w[1][1])],
+                ];
+                let roots: Vec<[f64; 2]> = starts
+                    .iter()
+                    .filter_map(|s| lifts[p].newton(y, *s))
+                    .collect();
+                assert!(!roots.is_empty(), "no lift of {y:?} in {w:?}");
+                for r in &roots {
+                    checked += 1;
+                    let slack = 1e-12;
+                    assert!(
+                        (0..2).all(|k| w[k][0] - slack <= r[k] && r[k] <= w[k][1] + slack),
+                        "patch {p}: the lift {r:?} of {y:?} is outside the proven box {w:?}"
+                    );
+                    let d = (r[0] - roots[0][0]).abs().max((r[1] - roots[0][1]).abs());
+                    assert!(
+                        d < 1e-9,
+                        "two lifts in one proven box: {r:?}, {:?}",
+                        roots[0]
+                    );
+                }
+            }
+        }
+        assert!(proven >= 20, "{proven} chords proven");
+        assert!(refused >= 20, "{refused} boxes refused");
+        assert!(checked >= 1000, "{checked}");
+    }
+}
