@@ -50,7 +50,10 @@ def jobs(models):
         out.append((name, [str(a) for a in argv], kind))
 
     def short(p):
-        return Path(p).stem if Path(p).suffix else Path(p).name
+        p = Path(p)
+        if p.parent.name == "newell_teaset":
+            return f"teaset_{p.name}"
+        return p.stem if p.suffix else p.name
 
     shapes = [models / f"{s}.json" for s in SHAPES]
     every = BEZIER + IGES + MESHES + shapes

@@ -24,7 +24,7 @@ use limn::number::Rational;
 use limn::surface::RationalPatch;
 use limn::testing::shapes;
 
-mod analytic;
+use crate::analytic;
 use analytic::{reference_at, shifted, to_segment, Shape, Viewer};
 
 fn q(n: i64) -> Rational {

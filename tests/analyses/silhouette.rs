@@ -10,7 +10,7 @@ use limn::number::Rational;
 use limn::solver::{CrossingId, CurveOptions};
 use limn::testing::shapes;
 
-mod analytic;
+use crate::analytic;
 
 fn q(a: i64, b: i64) -> Rational {
     Rational::from((a, b))

@@ -5,7 +5,7 @@
 use serde_json::Value;
 use std::path::PathBuf;
 
-mod common;
+use crate::common;
 use common::limn;
 
 fn tmp(name: &str) -> PathBuf {

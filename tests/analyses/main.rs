@@ -1,0 +1,17 @@
+//! The analyses through the library: contours, certificates, event curves, visibility.
+//!
+//! One test binary per group (each links GMP and MPFR): the modules below were separate
+//! binaries before.
+
+#[path = "../analytic/mod.rs"]
+mod analytic;
+
+mod bitangent_curves;
+mod certificate;
+mod events;
+mod flecnodal;
+mod flecnodal_curves;
+mod hlr;
+mod parabolic;
+mod silhouette;
+mod visible;

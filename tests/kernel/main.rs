@@ -1,0 +1,10 @@
+//! The number, Bernstein, surface and solver layers, and the readers under fuzzing.
+//!
+//! One test binary per group (each links GMP and MPFR): the modules below were separate
+//! binaries before.
+
+mod curve_topology;
+mod reader_fuzz;
+mod space_curve;
+mod surface;
+mod system;
