@@ -155,7 +155,7 @@ pub(crate) fn parabolic_direction(eval: &Evaluator, u: f64, v: f64) -> Option<[f
 /// The parabolic event curves of a model from its parabolic curves (as computed by
 /// [`crate::analysis::contour::parabolic::parabolic`]). Each curve's error bound comes from its pieces
 /// ([`crate::analysis::contour::curves::SilhouetteCurve::pieces`]): over each piece's box, one of the
-/// asymptotic rows ([`crate::analysis::contour::parabolic::AsymptoticRanges`]) must be enclosed in a cone.
+/// asymptotic rows (`AsymptoticRanges`) must be enclosed in a cone.
 pub fn parabolic_events(model: &Model, parabolic: &Silhouette) -> Vec<SphereCurve> {
     let evals: Vec<Evaluator> = model
         .patches

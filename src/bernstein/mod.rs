@@ -1,7 +1,7 @@
 //! Layer 2: Bernstein polynomials, tensor-product in 1 to 4 variables, generic over the
 //! number layer.
 //!
-//! A polynomial of degrees (d_0, ..., d_{k-1}) on the unit box [0,1]^k is
+//! A polynomial of degrees (d_0, ..., d_{k-1}) on the unit box `[0,1]^k` is
 //! `p(x) = Σ_I c_I Π_a B_{d_a, I_a}(x_a)` with `B_{d,i}(t) = C(d,i) t^i (1-t)^(d-i)`.
 //! The coefficients are stored row-major: the last variable varies fastest.
 //!

@@ -18,7 +18,7 @@ impl<N: Number> Bernstein<N> {
         self.split_with(axis, |row, next| row.midpoint_assign(next))
     }
 
-    /// Splits the box at `t` along `axis` (t in [0,1]; an enclosure of t for interval types):
+    /// Splits the box at `t` along `axis` (t in `[0,1]`; an enclosure of t for interval types):
     /// the polynomials on `[0, t]` and `[t, 1]`, each reparameterised to `[0, 1]`.
     ///
     /// # Panics

@@ -22,7 +22,7 @@ pub enum Place {
     Patch {
         /// Patch index.
         index: usize,
-        /// The field ("points", "weights[3]").
+        /// The field (`"points"`, `"weights[3]"`).
         field: String,
     },
     /// A JSON path or other named location.

@@ -102,7 +102,7 @@ impl SilhouetteReport {
         SilhouetteReport::of_curves(model, "silhouette", view.to_json(), s, time_ms, threads)
     }
 
-    /// The report of a run of [`model_curves`] for the curve family `kind`, with the view it
+    /// The report of a run of [`model_curves`](crate::analysis::contour::family::model_curves) for the curve family `kind`, with the view it
     /// depends on (JSON null if none).
     pub fn of_curves(
         model: &str,

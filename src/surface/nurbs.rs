@@ -244,7 +244,7 @@ impl NurbsSurface {
 
     /// The rational Bézier patches of this surface, one per nonempty knot span pair, row by
     /// row along u: exact, so each piece is the surface on its span reparameterised to
-    /// [0,1]^2 (`proofs/knot-insertion.md`). Returns the patches with their span indices.
+    /// `[0,1]^2` (`proofs/knot-insertion.md`). Returns the patches with their span indices.
     pub fn to_bezier(&self) -> Vec<((usize, usize), RationalPatch)> {
         let [p, q] = self.degree;
         let [nu, nv] = self.counts;

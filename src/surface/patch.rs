@@ -68,7 +68,7 @@ impl Edge {
     pub const ALL: [Edge; 4] = [Edge::V0, Edge::U1, Edge::V1, Edge::U0];
 }
 
-/// A rational tensor-product Bézier patch of degree (m, n) on [0,1]^2:
+/// A rational tensor-product Bézier patch of degree (m, n) on `[0,1]^2`:
 /// `S(u,v) = Σ w_ij P_ij B_i^m(u) B_j^n(v) / Σ w_ij B_i^m(u) B_j^n(v)`.
 ///
 /// Control point (i, j) is entry `i * (n + 1) + j`: i along u, j along v. Weights are

@@ -1,6 +1,6 @@
 //! Exact rational models with known closed forms.
 //!
-//! The quarter circle `x = (1 − t²)/(1 + t²)`, `y = 2t/(1 + t²)`, t in [0,1], is a rational
+//! The quarter circle `x = (1 − t²)/(1 + t²)`, `y = 2t/(1 + t²)`, t in `[0,1]`, is a rational
 //! quadratic Bézier curve with control points (1,0), (1,1), (0,1) and weights 1, 1, 2: every
 //! coefficient is rational, so spheres and tori built from it are exact.
 

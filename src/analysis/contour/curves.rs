@@ -17,7 +17,7 @@ pub struct Degenerate {
     /// "collapsed side" (a side collapsed to a point, where the normal vanishes),
     /// "silhouette side" (g vanishes on a whole side: the side is part of the silhouette) or
     /// "silhouette line" (g vanishes on a whole line u = c or v = c inside the patch); for
-    /// other curve families, the names their [`CurveRules`] give.
+    /// other curve families, the names their [`CurveRules`](crate::analysis::contour::family::CurveRules) give.
     pub kind: &'static str,
     /// The side, for "collapsed side" and "silhouette side".
     #[serde(skip_serializing_if = "Option::is_none")]

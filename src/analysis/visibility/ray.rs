@@ -4,7 +4,7 @@
 //! For a sample point `p` and each patch `j` whose image box and depth range can meet the ray,
 //! the points of `j` with the image of `p` are the roots of the square system
 //! `x_j q_p − x_p q_j = 0`, `y_j q_p − y_p q_j = 0` (see [`crate::analysis::projection`]), isolated by
-//! the certified system solver ([`crate::solver::solve_system`], `proofs/krawczyk.md`); each
+//! the certified system solver ([`solve_system`](crate::solver::system::solve_system), `proofs/krawczyk.md`); each
 //! root is in front of `p` by the certified sign of `depth_j w_p − depth_p w_j` on its
 //! enclosure. The count is proven when every root is isolated, lies strictly inside its
 //! domain (a ray through a patch edge would be counted on both patches), and has a strict

@@ -160,7 +160,7 @@ pub struct Cell {
     pub level: Option<Level>,
 }
 
-/// The certified topology of `g = 0` on [0,1]^2.
+/// The certified topology of `g = 0` on `[0,1]^2`.
 #[derive(Clone, Debug, Default, serde::Serialize)]
 pub struct CurveTopology {
     /// g is the zero polynomial: every point is on the curve.
@@ -184,7 +184,7 @@ pub struct CurveTopology {
     /// Undecided regions.
     pub unresolved: Vec<Unresolved>,
     /// The critical points of g isolated inside the undecided regions, with what is known of
-    /// g there ([`crate::solver::plane_curve::critical_points`]).
+    /// g there ([`critical_points`](crate::solver::plane_curve::critical_points::critical_points)).
     pub critical: Vec<CriticalPoint>,
     /// Boxes examined.
     pub boxes: usize,

@@ -105,7 +105,7 @@ pub struct SpaceSingularPoint {
     pub branches: Option<usize>,
 }
 impl SpaceSingularPoint {
-    /// Its exact coordinates before the solver's [`warp`] with the factors `lambda`.
+    /// Its exact coordinates before the solver's [`warp`](crate::solver::space_curve::warp::warp) with the factors `lambda`.
     pub fn unwarped(&self, lambda: &[Rational]) -> Vec<Rational> {
         self.values
             .iter()

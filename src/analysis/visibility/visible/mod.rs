@@ -9,7 +9,7 @@
 //! image; or where another surface passes through it; or across its own contour.
 //! So each patch's square is subdivided (a quadtree, to `max_depth`) until a cell is
 //! **quiet**: its silhouette function has a strict sign on it, and every box of the outline
-//! trees ([`outline`]) is proven behind it or apart from it in the image, except its own
+//! trees (`outline`) is proven behind it or apart from it in the image, except its own
 //! boundary near it where its image map is injective, and every patch that shares no corner
 //! with it is apart from it in space. The QI is constant on every connected union of quiet
 //! cells (`proofs/visible-regions.md`, claim 1), so one certified ray test
