@@ -91,7 +91,7 @@ fn benches(c: &mut Criterion) {
                 .build()
                 .unwrap();
             let t = std::time::Instant::now();
-            let r = pool.install(|| bitangent_curves(&teapot, &opts));
+            let r = pool.install(|| bitangent_curves(&teapot, &opts)).unwrap();
             eprintln!(
                 "teapot tol 1e-4 x diagonal, {threads} threads: {:.1} s (one run), {} pairs, {} pruned, {} self-pairs excluded, {} curves, {} boxes, {} unresolved boxes",
                 t.elapsed().as_secs_f64(),

@@ -73,7 +73,7 @@ fn benches(c: &mut Criterion) {
                 .build()
                 .unwrap();
             let t = std::time::Instant::now();
-            let r = pool.install(|| flecnodal_curves(&teapot, &opts));
+            let r = pool.install(|| flecnodal_curves(&teapot, &opts)).unwrap();
             eprintln!(
                 "teapot topology, {threads} threads: {:.2} s (one run), {} curves, {} unresolved boxes",
                 t.elapsed().as_secs_f64(),

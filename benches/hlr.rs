@@ -34,8 +34,14 @@ fn benches(c: &mut Criterion) {
         for (name, m) in [("torus", &torus), ("two-spheres", &spheres)] {
             g.bench_function(format!("{name}-1,2,3-{threads}-threads"), |b| {
                 b.iter(|| {
-                    pool.install(|| hidden_lines(m, &view([1, 2, 3]), &opts, WeldTolerance::Exact))
-                        .unwrap()
+                    pool.install(|| {
+                        hidden_lines(
+                            m,
+                            &view([1, 2, 3]),
+                            &opts.clone().with_weld(WeldTolerance::Exact),
+                        )
+                    })
+                    .unwrap()
                 })
             });
         }
@@ -71,7 +77,13 @@ fn benches(c: &mut Criterion) {
                     .map(|_| {
                         let t = std::time::Instant::now();
                         let h = pool
-                            .install(|| hidden_lines(&teapot, &view(d), opts, WeldTolerance::Exact))
+                            .install(|| {
+                                hidden_lines(
+                                    &teapot,
+                                    &view(d),
+                                    &(opts).clone().with_weld(WeldTolerance::Exact),
+                                )
+                            })
                             .unwrap();
                         std::hint::black_box(h);
                         t.elapsed().as_secs_f64()
@@ -101,7 +113,7 @@ fn spring(_: &mut Criterion) {
         };
         let t = std::time::Instant::now();
         let h = pool
-            .install(|| hidden_lines(&spring, &view([2, 3, -2]), &opts, weld))
+            .install(|| hidden_lines(&spring, &view([2, 3, -2]), &opts.clone().with_weld(weld)))
             .unwrap();
         println!(
             "hlr/spring-2,3,-2-clusters-{clusters}-2-threads: {:.1} s, {} pieces, {} unresolved, {} cluster pairs",

@@ -35,7 +35,11 @@ fn benches(c: &mut Criterion) {
             |b| {
                 b.iter(|| {
                     pool.install(|| {
-                        visible_regions(&spheres, &view([1, 2, 3]), &opts, WeldTolerance::Exact)
+                        visible_regions(
+                            &spheres,
+                            &view([1, 2, 3]),
+                            &opts.clone().with_weld(WeldTolerance::Exact),
+                        )
                     })
                     .unwrap()
                 })
@@ -64,8 +68,7 @@ fn benches(c: &mut Criterion) {
                                     visible_regions(
                                         &teapot,
                                         &view([2, 3, -2]),
-                                        &opts,
-                                        WeldTolerance::Exact,
+                                        &opts.clone().with_weld(WeldTolerance::Exact),
                                     )
                                 })
                                 .unwrap();
@@ -99,7 +102,7 @@ fn spring() {
         };
         let t = std::time::Instant::now();
         let r = pool(2)
-            .install(|| visible_regions(&spring, &view([2, 3, -2]), &opts, weld))
+            .install(|| visible_regions(&spring, &view([2, 3, -2]), &opts.clone().with_weld(weld)))
             .unwrap();
         println!(
             "visible/spring-2,3,-2-depth-5-clusters-{clusters}-2-threads: {:.1} s, area share [{:.4}, {:.4}], {} cells",
@@ -131,7 +134,11 @@ fn trimming() {
             let t = std::time::Instant::now();
             let r = pool(threads)
                 .install(|| {
-                    visible_regions(&teapot, &view([2, 3, -2]), &opts, WeldTolerance::Exact)
+                    visible_regions(
+                        &teapot,
+                        &view([2, 3, -2]),
+                        &opts.clone().with_weld(WeldTolerance::Exact),
+                    )
                 })
                 .unwrap();
             let s = &r.stats;

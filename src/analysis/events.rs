@@ -21,6 +21,7 @@ use crate::analysis::chords::sphere_curve::{largest, piece_error};
 use crate::analysis::contour::curves::Silhouette;
 use crate::analysis::contour::parabolic::AsymptoticRanges;
 use crate::analysis::flecnodal::curves::{flecnodal_curves, FlecnodalOptions};
+use crate::error::Error;
 use crate::model::Model;
 use rayon::prelude::*;
 
@@ -215,7 +216,7 @@ pub fn parabolic_events(model: &Model, parabolic: &Silhouette) -> Vec<SphereCurv
 }
 
 /// What to compute for [`events`].
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Default)]
 pub struct EventOptions {
     /// Parabolic events, with the options of the parabolic curves (the plane-curve solver's,
     /// how patch sides are matched, and the tolerance in model units).
@@ -230,8 +231,27 @@ pub struct EventOptions {
     pub bitangent: Option<BitangentOptions>,
 }
 
-/// The event curves of a model on the viewing sphere, for the families asked for.
-pub fn events(model: &Model, opts: &EventOptions) -> Events {
+/// The event curves of a model on the viewing sphere, for the families asked for, each with
+/// a proven angular error bound (`proofs/events.md`).
+///
+/// # Errors
+/// None today; the `Result` is the shape every entry point has.
+///
+/// # Examples
+/// ```
+/// use limn::{events, EventOptions, Model};
+/// use limn::model::{Format, WeldTolerance};
+/// use limn::number::Rational;
+/// use limn::solver::CurveOptions;
+/// // A sphere has no parabolic curves, so no lip or beak-to-beak events.
+/// let sphere = Model::from_patches(Format::Json, limn::testing::shapes::sphere(&Rational::from(1)));
+/// let mut opts = EventOptions::default();
+/// opts.parabolic = Some((CurveOptions::default(), WeldTolerance::Exact, None));
+/// let ev = events(&sphere, &opts)?;
+/// assert!(ev.curves.is_empty() && ev.certified());
+/// # Ok::<(), limn::Error>(())
+/// ```
+pub fn events(model: &Model, opts: &EventOptions) -> Result<Events, Error> {
     let mut out = Events {
         curves: Vec::new(),
         uncertified: Vec::new(),
@@ -246,7 +266,7 @@ pub fn events(model: &Model, opts: &EventOptions) -> Events {
         ));
     }
     if let Some(f) = &opts.flecnodal {
-        let r = flecnodal_curves(model, f);
+        let r = flecnodal_curves(model, f)?;
         let mut incomplete = 0;
         for b in r.patches.iter().flat_map(|p| &p.branches) {
             incomplete += usize::from(!b.complete);
@@ -269,7 +289,7 @@ pub fn events(model: &Model, opts: &EventOptions) -> Events {
         ));
     }
     if let Some(b) = &opts.bitangent {
-        let r = bitangent_curves(model, b);
+        let r = bitangent_curves(model, b)?;
         let mut incomplete = 0;
         for c in r.pairs.iter().flat_map(|p| &p.branches) {
             incomplete += usize::from(!c.complete);
@@ -291,5 +311,5 @@ pub fn events(model: &Model, opts: &EventOptions) -> Events {
             r.pairs.iter().map(|p| p.unresolved.len()).sum(),
         ));
     }
-    out
+    Ok(out)
 }

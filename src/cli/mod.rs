@@ -447,13 +447,17 @@ where
             let document: Box<dyn CurveDocument> = match kind {
                 CurveKind::Flecnodal => {
                     let o = FlecnodalOptions::with_tolerance(tol_abs).with_deadline(opts.deadline);
-                    let r = pool.install(|| flecnodal_curves(&m, &o));
+                    let r = pool
+                        .install(|| flecnodal_curves(&m, &o))
+                        .map_err(|e| CliError::input(e.to_string()))?;
                     let ms = start.elapsed().as_secs_f64() * 1e3;
                     Box::new(FlecnodalReport::new(&name, &r, tol_abs, ms, threads))
                 }
                 CurveKind::Bitangent => {
                     let o = BitangentOptions::with_tolerance(tol_abs).with_deadline(opts.deadline);
-                    let r = pool.install(|| bitangent_curves(&m, &o));
+                    let r = pool
+                        .install(|| bitangent_curves(&m, &o))
+                        .map_err(|e| CliError::input(e.to_string()))?;
                     let ms = start.elapsed().as_secs_f64() * 1e3;
                     Box::new(BitangentReport::new(&name, &r, tol_abs, ms, threads))
                 }
@@ -530,7 +534,9 @@ where
                 bitangent: wanted[2]
                     .then(|| BitangentOptions::with_tolerance(tol_abs).with_deadline(deadline)),
             };
-            let ev = pool.install(|| events(&m, &eopts));
+            let ev = pool
+                .install(|| events(&m, &eopts))
+                .map_err(|e| CliError::input(e.to_string()))?;
             let ms = start.elapsed().as_secs_f64() * 1e3;
             let report = EventsReport::new(&name, &ev, ms, pool.current_num_threads());
             let text = match format {
@@ -570,7 +576,7 @@ where
                 ..HlrOptions::default()
             };
             let h = pool
-                .install(|| hidden_lines(&m, &view, &hopts, weld))
+                .install(|| hidden_lines(&m, &view, &hopts.clone().with_weld(weld)))
                 .map_err(|e| CliError::input(format!("{name}: {e}")))?;
             let ms = start.elapsed().as_secs_f64() * 1e3;
             let report = HlrReport::new(&name, &view, &h, ms, pool.current_num_threads());
@@ -625,7 +631,7 @@ where
                 ..VisibleOptions::default()
             };
             let r = pool
-                .install(|| visible_regions(&m, &view, &vopts, weld))
+                .install(|| visible_regions(&m, &view, &vopts.clone().with_weld(weld)))
                 .map_err(|e| CliError::input(format!("{name}: {e}")))?;
             let ms = start.elapsed().as_secs_f64() * 1e3;
             let report =
@@ -720,8 +726,12 @@ where
             if format == CurveFormat::Svg {
                 let view =
                     View::Direction(parse_vector(DEMO_HLR_DIRECTION).map_err(CliError::input)?);
-                let h = hidden_lines(&m, &view, &HlrOptions::default(), WeldTolerance::Exact)
-                    .map_err(|e| CliError::input(e.to_string()))?;
+                let h = hidden_lines(
+                    &m,
+                    &view,
+                    &HlrOptions::default().with_weld(WeldTolerance::Exact),
+                )
+                .map_err(|e| CliError::input(e.to_string()))?;
                 let unresolved = h.pieces.iter().filter(|p| !p.certified).count();
                 let title = format!(
                     "{name}: hidden lines from ({DEMO_HLR_DIRECTION}), {} pieces, {unresolved} unresolved (red)",

@@ -9,6 +9,7 @@ use crate::model::Model;
 use crate::report::render::{
     curves_svg, gather, obj_polyline, reason_lines, verdict_lines, Work, INCOMPLETE_STYLE,
 };
+use crate::solver::precision::Escalations;
 
 /// One bitangent curve of the report: a chain of pairs of points with one tangent plane.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
@@ -132,7 +133,10 @@ impl BitangentReport {
                 points: curves.iter().map(|c| c.points.len()).sum(),
                 work: Work {
                     boxes: r.pairs.iter().map(|p| p.boxes).sum(),
-                    escalations: r.pairs.iter().map(|p| p.escalations).sum(),
+                    escalations: r.pairs.iter().fold(Escalations::default(), |mut e, p| {
+                        e.merge(&p.escalations);
+                        e
+                    }),
                     unresolved: unresolved.len(),
                     ms,
                     threads,

@@ -7,6 +7,7 @@ use crate::model::Model;
 use crate::report::render::{
     curves_svg, gather, obj_polyline, reason_lines, verdict_lines, Work, INCOMPLETE_STYLE,
 };
+use crate::solver::precision::Escalations;
 
 /// The polylines of curves, with whether each is closed.
 fn lines<'a>(cs: &[&'a FlecnodalCurve]) -> Vec<(&'a [[f64; 3]], bool)> {
@@ -159,7 +160,10 @@ impl FlecnodalReport {
                 points: curves.iter().map(|c| c.points.len()).sum(),
                 work: Work {
                     boxes: r.patches.iter().map(|p| p.boxes).sum(),
-                    escalations: r.patches.iter().map(|p| p.escalations).sum(),
+                    escalations: r.patches.iter().fold(Escalations::default(), |mut e, p| {
+                        e.merge(&p.escalations);
+                        e
+                    }),
                     unresolved: unresolved.len(),
                     ms,
                     threads,

@@ -7,6 +7,7 @@ use crate::analysis::visibility::hlr::{HiddenLines, HlrPiece, LineKind};
 use crate::analysis::visibility::visible::VisibleRegions;
 use crate::geometry::vec3::{cross, dot, normalize};
 use crate::model::Model;
+use crate::solver::precision::Escalations;
 use std::fmt::Write;
 
 /// A projection of space onto the view plane: orthographic along a direction, or central from
@@ -480,8 +481,9 @@ pub(crate) use curve_document;
 pub struct Work {
     /// Boxes examined by the curve solver.
     pub boxes: usize,
-    /// Boxes whose polynomials were recomputed exactly.
-    pub escalations: usize,
+    /// Sign questions and box recomputations by the precision level that settled them (the
+    /// same object in every report).
+    pub escalations: Escalations,
     /// Unresolved boxes.
     pub unresolved: usize,
     /// Wall-clock milliseconds.
@@ -495,7 +497,10 @@ impl Work {
     pub fn line(&self) -> String {
         format!(
             "{} boxes, {} escalations, {:.1} ms on {} threads\n",
-            self.boxes, self.escalations, self.ms, self.threads
+            self.boxes,
+            self.escalations.escalated(),
+            self.ms,
+            self.threads
         )
     }
 }

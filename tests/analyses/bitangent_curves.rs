@@ -103,7 +103,7 @@ fn a_shared_side_is_not_mistaken_for_bitangents() {
         );
         for patches in [vec![left.clone(), right.clone()], vec![right, left]] {
             let model = Model::from_patches(Format::Json, patches);
-            let out = bitangent_curves(&model, &BitangentOptions::default());
+            let out = bitangent_curves(&model, &BitangentOptions::default()).unwrap();
             // Both halves are excluded with themselves by Lemma 1; the pair is solved.
             assert_eq!(
                 (out.pruned, out.excluded_self, out.pairs.len()),
@@ -148,7 +148,7 @@ fn two_spheres_bitangents_are_the_tangent_cones() {
     let model = Model::from_patches(Format::Json, a.into_iter().chain(b).collect());
     let tol = 5e-2;
     let t = std::time::Instant::now();
-    let out = bitangent_curves(&model, &BitangentOptions::with_tolerance(Some(tol)));
+    let out = bitangent_curves(&model, &BitangentOptions::with_tolerance(Some(tol))).unwrap();
     eprintln!(
         "{:?}: {} pairs solved, {} pruned, {} excluded whole",
         t.elapsed(),
@@ -332,7 +332,7 @@ fn a_plane_found_through_one_pair_explains_the_others() {
             .collect(),
     );
     let started = std::time::Instant::now();
-    let out = bitangent_curves(&rim, &BitangentOptions::default());
+    let out = bitangent_curves(&rim, &BitangentOptions::default()).unwrap();
     eprintln!("rim: {:?}", started.elapsed());
     for pair in &out.pairs {
         let set = pair

@@ -22,7 +22,7 @@ fn torus_parabolic_events_are_the_equator() {
         flecnodal: None,
         bitangent: None,
     };
-    let ev = events(&model, &opts);
+    let ev = events(&model, &opts).unwrap();
     assert!(ev.sources_certified());
     // Every curve's distance to the true one on the sphere is bounded.
     assert!(ev.certified(), "{:?}", ev.largest_error());
@@ -69,7 +69,7 @@ fn double_well_bitangent_events_are_one_direction() {
         flecnodal: None,
         bitangent: Some(BitangentOptions::default()),
     };
-    let ev = events(&model, &opts);
+    let ev = events(&model, &opts).unwrap();
     assert!(ev.sources_certified());
     assert!(ev.certified());
     let error = ev.curves[0].error.expect("bounded");

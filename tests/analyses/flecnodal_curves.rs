@@ -159,7 +159,7 @@ fn the_teapots_first_twelve_patches_are_solved_and_its_rim_has_one_branch_per_pa
             .map(|p| p.surface.clone())
             .collect(),
     );
-    let r = flecnodal_curves(&small, &FlecnodalOptions::with_tolerance(None));
+    let r = flecnodal_curves(&small, &FlecnodalOptions::with_tolerance(None)).unwrap();
     for p in &r.patches {
         assert!(p.unresolved.iter().all(|u| !u.reason.is_empty()));
         eprintln!(

@@ -50,7 +50,12 @@ fn check_viewer(
 fn run(patches: Vec<RationalPatch>, dir: [i64; 3]) -> HiddenLines {
     let model = Model::from_patches(Format::Json, patches);
     let view = View::Direction(dir.map(Rational::from));
-    hidden_lines(&model, &view, &HlrOptions::default(), WeldTolerance::Exact).unwrap()
+    hidden_lines(
+        &model,
+        &view,
+        &HlrOptions::default().with_weld(WeldTolerance::Exact),
+    )
+    .unwrap()
 }
 
 const DIRECTIONS: [[i64; 3]; 6] = [
@@ -147,7 +152,12 @@ fn two_spheres_in_perspective() {
     let model = Model::from_patches(Format::Json, patches);
     let eye = [-2, -3, 9];
     let view = View::Eye(eye.map(Rational::from));
-    let h = hidden_lines(&model, &view, &HlrOptions::default(), WeldTolerance::Exact).unwrap();
+    let h = hidden_lines(
+        &model,
+        &view,
+        &HlrOptions::default().with_weld(WeldTolerance::Exact),
+    )
+    .unwrap();
     let (checked, pieces, certified) = check_viewer(
         &h,
         &shapes_,
@@ -304,7 +314,7 @@ fn drawing_to_a_tolerance_on_the_sphere() {
             tol: Some(tol),
             ..HlrOptions::default()
         };
-        let h = hidden_lines(&model, &view, &opts, WeldTolerance::Exact).unwrap();
+        let h = hidden_lines(&model, &view, &opts.clone().with_weld(WeldTolerance::Exact)).unwrap();
         let largest = h.largest_error().expect("every piece bounded");
         assert!(largest <= tol, "{largest} > {tol}");
         let mut drawn = 0;

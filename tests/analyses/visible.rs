@@ -40,7 +40,7 @@ fn run(patches: Vec<RationalPatch>, dir: [i64; 3], depth: u32) -> (Model, Visibl
         ..VisibleOptions::default()
     };
     let view = View::Direction(dir.map(q));
-    let r = visible_regions(&model, &view, &opts, WeldTolerance::Exact).unwrap();
+    let r = visible_regions(&model, &view, &opts.clone().with_weld(WeldTolerance::Exact)).unwrap();
     (model, r)
 }
 
@@ -247,7 +247,10 @@ fn the_result_does_not_depend_on_the_thread_count() {
             .num_threads(threads)
             .build()
             .unwrap()
-            .install(|| visible_regions(&model, &view, &opts, WeldTolerance::Exact).unwrap())
+            .install(|| {
+                visible_regions(&model, &view, &opts.clone().with_weld(WeldTolerance::Exact))
+                    .unwrap()
+            })
     };
     assert_eq!(go(1), go(2));
 }
@@ -271,7 +274,7 @@ fn trimming_curves_of_a_sphere_partly_behind_another() {
         ..VisibleOptions::default()
     };
     let view = View::Direction([1, 2, 3].map(q));
-    let r = visible_regions(&model, &view, &opts, WeldTolerance::Exact).unwrap();
+    let r = visible_regions(&model, &view, &opts.clone().with_weld(WeldTolerance::Exact)).unwrap();
     let norm = 14f64.sqrt();
     let d = [1.0 / norm, 2.0 / norm, 3.0 / norm];
     let (ca, cb) = ([0.0; 3], [2.0, 1.0, 1.0]);

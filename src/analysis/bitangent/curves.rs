@@ -19,10 +19,12 @@ use crate::analysis::bitangent::system::{
 use crate::analysis::bitangent::tangent_lines::{tangent_plane_along, TangentLine};
 use crate::analysis::chords::space_curve::{Accuracy, Evaluator};
 use crate::analysis::chords::sphere_curve::{largest, piece_error};
+use crate::error::Error;
 use crate::model::Model;
 use crate::number::{Interval, Number, Rational};
 use crate::solver::chain::chain;
 use crate::solver::plane_curve::TIME_LIMIT_REASON;
+use crate::solver::precision::Escalations;
 use crate::solver::space_curve::ArcAccept;
 use crate::solver::space_curve::{
     solve_space_curve_excluding, unwarp, unwarp_interval, warp, BoxVerdict, SpaceCurve,
@@ -185,7 +187,7 @@ pub struct PairBitangents {
     /// Boxes examined.
     pub boxes: usize,
     /// Boxes recomputed exactly.
-    pub escalations: usize,
+    pub escalations: Escalations,
     /// Sides of the first patch divided out of its normal (collapsed sides: their limit normal
     /// is used).
     pub divided_sides: Vec<&'static str>,
@@ -409,7 +411,7 @@ pub fn pair_bitangents(
         plane_sets: Vec::new(),
         tangent_lines: [Vec::new(), Vec::new()],
         boxes: 0,
-        escalations: 0,
+        escalations: Escalations::default(),
         divided_sides: Vec::new(),
         error_bound: None,
         within_tolerance: options.tolerance.is_none(),
@@ -525,7 +527,7 @@ pub fn pair_bitangents(
         })
         .collect();
     out.boxes = curve.boxes;
-    out.escalations = curve.escalations;
+    out.escalations = curve.escalations.clone();
     out.unresolved = curve
         .unresolved
         .iter()
@@ -679,8 +681,31 @@ fn branches(
 }
 
 /// The bitangents of every pair of patches of a model, pairs pruned by their normal cones and
-/// solved in parallel.
-pub fn bitangent_curves(model: &Model, opts: &BitangentOptions) -> BitangentCurves {
+/// solved in parallel: certified topology, and with a tolerance every drawn segment within it
+/// (`proofs/bitangent.md`).
+///
+/// # Errors
+/// None today (the curves do not depend on a view); the `Result` is the shape every entry
+/// point has.
+///
+/// # Examples
+/// ```
+/// use limn::{bitangent_curves, BitangentOptions, Model};
+/// use limn::number::Rational;
+/// let q = |n: i64| Rational::from(n);
+/// // A convex bowl z = x² + y² + xy/3: no two points share a tangent plane.
+/// let bowl = limn::testing::shapes::graph(
+///     &[(2, 0, q(1)), (0, 2, q(1)), (1, 1, Rational::from((1, 3)))],
+///     [q(-1), q(1)],
+///     [q(-1), q(2)],
+/// );
+/// let model = Model::from_patches(limn::model::Format::Json, vec![bowl]);
+/// let b = bitangent_curves(&model, &BitangentOptions::default())?;
+/// assert!(b.is_certified());
+/// assert!(b.pairs.iter().all(|p| p.branches.is_empty()));
+/// # Ok::<(), limn::Error>(())
+/// ```
+pub fn bitangent_curves(model: &Model, opts: &BitangentOptions) -> Result<BitangentCurves, Error> {
     let patches: Vec<&RationalPatch> = model.patches.iter().map(|p| &p.surface).collect();
     let cones: Vec<Option<([f64; 3], f64)>> = patches.par_iter().map(|p| normal_cone(p)).collect();
     let mut todo = Vec::new();
@@ -723,11 +748,11 @@ pub fn bitangent_curves(model: &Model, opts: &BitangentOptions) -> BitangentCurv
         let [i, j] = p.patches;
         explain_plane_sets(p, &[lines[i].clone(), lines[j].clone()]);
     }
-    BitangentCurves {
+    Ok(BitangentCurves {
         patches: patches.len(),
         pairs,
         pruned,
         excluded_self: excluded.iter().filter(|e| **e).count(),
         pairs_total: patches.len() * (patches.len() + 1) / 2,
-    }
+    })
 }

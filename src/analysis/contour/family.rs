@@ -249,12 +249,20 @@ pub fn model_curves(
         }
         let (a, b) = (class[0], class[1]);
         let normals = rules.parallel_normal_joins.then_some(&patches[..]);
-        let joined = join_side(&tops, &gs, normals, a, b, &mut joins)
-            || join_zero_side(&mut tops, &gs, &quotients, a, b, &mut joins);
+        let joined = join_side(
+            &tops,
+            &gs,
+            normals,
+            a,
+            b,
+            &mut joins,
+            &opts.ladder,
+            &mut escalations,
+        ) || join_zero_side(&mut tops, &gs, &quotients, a, b, &mut joins);
         if joined {
             continue;
         }
-        if ends_at_edge(&tops, &gs, a, b, &mut joins) {
+        if ends_at_edge(&tops, &gs, a, b, &mut joins, &opts.ladder, &mut escalations) {
             // The function jumps across the edge: crossings common to both patches are joined,
             // every other curve reaching it ends there.
             open_boundary.push((a.patch, a.edge));

@@ -10,7 +10,7 @@ use crate::bernstein::Bernstein;
 use crate::model::SideUse;
 use crate::number::Rational;
 use crate::solver::plane_curve::zero_lines::{add_line, line_point};
-use crate::solver::{CrossingId, CurveTopology, Dyadic, Escalations};
+use crate::solver::{CrossingId, CurveTopology, Dyadic, Escalations, Ladder};
 use crate::surface::{Edge, RationalPatch};
 use std::collections::BTreeMap;
 
@@ -55,6 +55,8 @@ pub(crate) fn parallel_normals(
     pb: &RationalPatch,
     eb: Edge,
     reversed: bool,
+    ladder: &Ladder,
+    stats: &mut Escalations,
 ) -> bool {
     let (na, nb) = (pa.normal(), pb.normal());
     let side = |n: &[Bernstein<Rational>; 3], e: Edge, rev: bool| -> [Bernstein<Rational>; 3] {
@@ -78,12 +80,7 @@ pub(crate) fn parallel_normals(
         return false;
     }
     let dot = &(&(&a[0] * &b[0]) + &(&a[1] * &b[1])) + &(&a[2] * &b[2]);
-    let roots = crate::solver::isolate_roots(
-        &dot,
-        &crate::solver::Ladder::default(),
-        40,
-        &mut Escalations::default(),
-    );
+    let roots = crate::solver::isolate_roots(&dot, ladder, 40, stats);
     // A normal vanishing exactly at an end of the edge is a corner, which is joined by vertex
     // identity and excluded from the side's crossings: only interior zeros matter.
     let interior = |r: &crate::solver::Root| !matches!(r, crate::solver::Root::At { t } if *t == Dyadic::ZERO || *t == Dyadic::ONE);
@@ -120,6 +117,8 @@ pub(crate) fn join_side(
     a: SideUse,
     b: SideUse,
     joins: &mut Joins,
+    ladder: &Ladder,
+    stats: &mut Escalations,
 ) -> bool {
     let pa = side_polynomial(&gs[a.patch], a.edge);
     let pb = side_polynomial(&gs[b.patch], b.edge);
@@ -128,8 +127,11 @@ pub(crate) fn join_side(
         return false;
     }
     if !proportional(&pa, &pb, reversed)
-        && !patches
-            .is_some_and(|p| parallel_normals(p[a.patch], a.edge, p[b.patch], b.edge, reversed))
+        && !patches.is_some_and(|p| {
+            parallel_normals(
+                p[a.patch], a.edge, p[b.patch], b.edge, reversed, ladder, stats,
+            )
+        })
     {
         return false;
     }
@@ -172,6 +174,8 @@ pub(crate) fn ends_at_edge(
     a: SideUse,
     b: SideUse,
     joins: &mut Joins,
+    ladder: &Ladder,
+    stats: &mut Escalations,
 ) -> bool {
     let reversed = a.reversed != b.reversed;
     let (pa, pb) = (
@@ -181,9 +185,9 @@ pub(crate) fn ends_at_edge(
     if pa.is_zero() || pb.is_zero() {
         return false;
     }
-    let avoids = |crossings: Vec<(Dyadic, Dyadic, CrossingId)>,
-                  t: &CurveTopology,
-                  other: &Bernstein<Rational>| {
+    let mut avoids = |crossings: Vec<(Dyadic, Dyadic, CrossingId)>,
+                      t: &CurveTopology,
+                      other: &Bernstein<Rational>| {
         crossings.into_iter().all(|(lo, hi, id)| {
             let (lo, hi) = match id {
                 CrossingId::Segment { .. } => t.intervals.get(&id).copied().unwrap_or((lo, hi)),
@@ -197,14 +201,7 @@ pub(crate) fn ends_at_edge(
             if lo == hi {
                 return other.eval(&[lo.to_rational()]).cmp0() != std::cmp::Ordering::Equal;
             }
-            let r = crate::solver::isolate_roots_in(
-                other,
-                lo,
-                hi,
-                &crate::solver::Ladder::default(),
-                40,
-                &mut Escalations::default(),
-            );
+            let r = crate::solver::isolate_roots_in(other, lo, hi, ladder, 40, stats);
             r.roots.is_empty() && r.unresolved.is_empty() && !r.identically_zero
         })
     };

@@ -121,6 +121,7 @@ mod tests {
     use super::*;
     use crate::analysis::contour::joins::{parallel_normals, proportional};
     use crate::analysis::contour::sides::side_polynomial;
+    use crate::solver::{Escalations, Ladder};
     use crate::surface::Edge;
 
     fn quad(p: [[i64; 3]; 4]) -> RationalPatch {
@@ -135,7 +136,15 @@ mod tests {
     fn parallel_normals_join_tangent_continuous_edges_only() {
         let a = quad([[0, 0, 0], [0, 1, 0], [1, 0, 0], [1, 1, 0]]);
         let b = quad([[1, 0, 0], [1, 1, 0], [2, 0, 0], [3, 1, 0]]);
-        assert!(parallel_normals(&a, Edge::U1, &b, Edge::U0, false));
+        assert!(parallel_normals(
+            &a,
+            Edge::U1,
+            &b,
+            Edge::U0,
+            false,
+            &Ladder::default(),
+            &mut Escalations::default()
+        ));
         let v = View::Direction([Rational::from(1), Rational::from(2), Rational::from(3)]);
         let (ga, gb) = (silhouette_function(&a, &v), silhouette_function(&b, &v));
         assert!(!proportional(
@@ -144,9 +153,25 @@ mod tests {
             false
         ));
         let creased = quad([[1, 0, 0], [1, 1, 0], [2, 0, 1], [3, 1, 1]]);
-        assert!(!parallel_normals(&a, Edge::U1, &creased, Edge::U0, false));
+        assert!(!parallel_normals(
+            &a,
+            Edge::U1,
+            &creased,
+            Edge::U0,
+            false,
+            &Ladder::default(),
+            &mut Escalations::default()
+        ));
         // Opposite parameter directions are handled by the reversal flag.
         let flipped = quad([[1, 1, 0], [1, 0, 0], [3, 1, 0], [2, 0, 0]]);
-        assert!(parallel_normals(&a, Edge::U1, &flipped, Edge::U0, true));
+        assert!(parallel_normals(
+            &a,
+            Edge::U1,
+            &flipped,
+            Edge::U0,
+            true,
+            &Ladder::default(),
+            &mut Escalations::default()
+        ));
     }
 }

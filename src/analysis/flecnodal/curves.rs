@@ -15,10 +15,12 @@ use crate::analysis::contour::parabolic::parabolic_function;
 use crate::analysis::flecnodal::system::{flecnodal_system, Chart};
 use crate::analysis::projection::lift;
 use crate::bernstein::Bernstein;
+use crate::error::Error;
 use crate::model::Model;
 use crate::number::{Interval, Number, Rational};
 use crate::solver::chain::chain;
 use crate::solver::plane_curve::TIME_LIMIT_REASON;
+use crate::solver::precision::Escalations;
 use crate::solver::space_curve::{
     solve_space_curve_where, unwarp, unwarp_interval, warp, ArcAccept, SpaceCrossing, SpaceCurve,
     SpaceCurveOptions,
@@ -150,7 +152,7 @@ pub struct PatchFlecnodal {
     /// Boxes examined, both charts.
     pub boxes: usize,
     /// Boxes recomputed exactly.
-    pub escalations: usize,
+    pub escalations: Escalations,
     /// Sides of the square whose linear factor was divided out of the system (both equations
     /// vanish there for every direction, as on a collapsed side): the points of these sides
     /// are not analysed.
@@ -265,7 +267,7 @@ pub fn patch_flecnodal(
         unresolved: Vec::new(),
         singular_points: Vec::new(),
         boxes: 0,
-        escalations: 0,
+        escalations: Escalations::default(),
         divided_sides: Vec::new(),
         error_bound: None,
         within_tolerance: options.tolerance.is_none(),
@@ -363,7 +365,7 @@ pub fn patch_flecnodal(
                 }
             }));
         out.boxes += c.boxes;
-        out.escalations += c.escalations;
+        out.escalations.merge(&c.escalations);
         out.unresolved.extend(c.unresolved.iter().map(|u| {
             let cell: Vec<[f64; 2]> = (0..3)
                 .map(|k| unwarp_interval(u.cell[k], warp_f64(k)))
@@ -501,14 +503,35 @@ fn join_charts<'a>(cu: &'a SpaceCurve, cv: &'a SpaceCurve) -> Joined<'a> {
         .collect()
 }
 
-/// The flecnodal curves of every patch of a model (in parallel over patches).
-pub fn flecnodal_curves(model: &Model, opts: &FlecnodalOptions) -> FlecnodalCurves {
-    FlecnodalCurves {
+/// The flecnodal curves of every patch of a model (in parallel over patches): certified
+/// topology, and with a tolerance every drawn segment within it (`proofs/flecnodal.md`,
+/// `proofs/space-curves.md`).
+///
+/// # Errors
+/// None today (the curves do not depend on a view); the `Result` is the shape every entry
+/// point has.
+///
+/// # Examples
+/// ```
+/// use limn::{flecnodal_curves, FlecnodalOptions, Model};
+/// use limn::number::Rational;
+/// // A sphere has no flecnodal points (its Gaussian curvature is positive everywhere).
+/// let sphere = Model::from_patches(
+///     limn::model::Format::Json,
+///     limn::testing::shapes::sphere(&Rational::from(1)),
+/// );
+/// let f = flecnodal_curves(&sphere, &FlecnodalOptions::with_tolerance(None))?;
+/// assert!(f.is_certified());
+/// assert!(f.patches.iter().all(|p| p.branches.is_empty()));
+/// # Ok::<(), limn::Error>(())
+/// ```
+pub fn flecnodal_curves(model: &Model, opts: &FlecnodalOptions) -> Result<FlecnodalCurves, Error> {
+    Ok(FlecnodalCurves {
         patches: model
             .patches
             .par_iter()
             .enumerate()
             .map(|(i, p)| patch_flecnodal(&p.surface, i, opts))
             .collect(),
-    }
+    })
 }

@@ -68,11 +68,12 @@ fn fibre(g: &Bernstein<Rational>, axis: usize, k: usize) -> Bernstein<Rational> 
 /// use limn::bernstein::Bernstein;
 /// use limn::number::Rational;
 /// use limn::solver::plane_curve::zero_lines::divide_zero_lines;
+/// use limn::solver::{Escalations, Ladder};
 /// // g = (u − 1/2)(u + v − 1), degree (2, 1): vanishes on the line u = 1/2.
 /// let half = Rational::from((1, 2));
 /// let lin = Bernstein::new(&[1, 0], vec![-half.clone(), half]).unwrap();
 /// let diag = Bernstein::new(&[1, 1], [-1, 0, 0, 1].map(Rational::from).to_vec()).unwrap();
-/// let (k, lines) = divide_zero_lines(&(&lin * &diag), 24);
+/// let (k, lines) = divide_zero_lines(&(&lin * &diag), 24, &Ladder::default(), &mut Escalations::default());
 /// assert_eq!(k, diag);
 /// assert_eq!(lines.len(), 1);
 /// assert_eq!(lines[0].to_string(), "u=1/2");
@@ -80,6 +81,8 @@ fn fibre(g: &Bernstein<Rational>, axis: usize, k: usize) -> Bernstein<Rational> 
 pub fn divide_zero_lines(
     g: &Bernstein<Rational>,
     max_exp: u32,
+    ladder: &Ladder,
+    stats: &mut Escalations,
 ) -> (Bernstein<Rational>, Vec<ZeroLine>) {
     let max_exp = max_exp.min(MAX_LINE_EXP);
     let mut g = g.clone();
@@ -87,8 +90,6 @@ pub fn divide_zero_lines(
     if g.is_zero() {
         return (g, lines);
     }
-    let ladder = Ladder::default();
-    let mut stats = Escalations::default();
     for axis in 0..2 {
         let other = g.degrees()[1 - axis];
         let Some(f) = (0..=other)
@@ -100,11 +101,11 @@ pub fn divide_zero_lines(
         if f.degrees()[0] == 0 {
             continue;
         }
-        let roots = isolate_roots(&f, &ladder, max_exp, &mut stats);
+        let roots = isolate_roots(&f, ladder, max_exp, stats);
         let width = (-(max_exp as f64)).exp2();
         let mut candidates: Vec<Dyadic> = Vec::new();
         for r in roots.roots {
-            if let Root::At { t } = refine_root(&f, r, width, &ladder, &mut stats) {
+            if let Root::At { t } = refine_root(&f, r, width, ladder, stats) {
                 candidates.push(t);
             }
         }
@@ -271,9 +272,11 @@ pub fn solve_curve_lines(
     opts: &crate::solver::CurveOptions,
 ) -> LinedCurve {
     // A line deeper than the subdivision may go cannot be made a grid line: not divided.
-    let (quotient, lines) = divide_zero_lines(g, opts.max_depth);
+    let mut stats = Escalations::default();
+    let (quotient, lines) = divide_zero_lines(g, opts.max_depth, &opts.ladder, &mut stats);
     let cuts: Vec<(usize, Dyadic)> = lines.iter().map(|z| (z.axis, z.at)).collect();
-    let solved = crate::solver::solve_curve_cut(&quotient, &cuts, opts);
+    let mut solved = crate::solver::solve_curve_cut(&quotient, &cuts, opts);
+    solved.escalations.merge(&stats);
     let mut topology = solved.clone();
     for z in &lines {
         let across: Vec<Dyadic> = lines

@@ -5,6 +5,7 @@ use crate::bernstein::Bernstein;
 use crate::number::{Interval, Number, Precision, Rational};
 use crate::solver::dyadic::Dyadic;
 use crate::solver::plane_curve::TIME_LIMIT_REASON;
+use crate::solver::precision::Level;
 use crate::solver::space_curve::faces::{
     face_roots, face_slice, to_global, to_global_inward, FaceRoot,
 };
@@ -562,7 +563,7 @@ pub(crate) fn subdivide(
         };
         // Undecided: recompute the polynomials exactly once if the enclosures have spread.
         if accurate_enough && !item.exact && item.depth >= 3 && slack(equations) > 1e-9 {
-            out.escalations += 1;
+            out.escalations.record(Some(Level::Exact));
             let lo: Vec<Rational> = item.cell.iter().map(|d| d.0.to_rational()).collect();
             let hi: Vec<Rational> = item.cell.iter().map(|d| d.1.to_rational()).collect();
             let polys = eqs

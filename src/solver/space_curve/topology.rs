@@ -4,6 +4,7 @@
 
 use crate::number::{Interval, Number, Rational};
 use crate::solver::dyadic::Dyadic;
+use crate::solver::precision::Escalations;
 use crate::solver::space_curve::subdivision::{within, without};
 use crate::solver::space_curve::warp::unwarp_exact;
 
@@ -132,8 +133,9 @@ pub struct SpaceCurve {
     pub singular_points: Vec<SpaceSingularPoint>,
     /// Boxes examined.
     pub boxes: usize,
-    /// Boxes whose polynomials were recomputed exactly (their f64 enclosures were too wide).
-    pub escalations: usize,
+    /// Boxes whose polynomials were recomputed from the exact input (their f64 enclosures had
+    /// spread too wide), by the level that recomputed them.
+    pub escalations: Escalations,
     /// With a tolerance: every arc's deviation is within it.
     pub within_tolerance: bool,
 }

@@ -32,6 +32,7 @@ mod lemmas;
 mod network;
 mod systems;
 
+use crate::error::Error;
 use drawing::*;
 use lemmas::*;
 use network::*;
@@ -54,7 +55,7 @@ use crate::model::{Model, WeldTolerance};
 use crate::number::{Interval, Rational};
 use crate::solver::dyadic::Dyadic;
 use crate::solver::plane_curve::TIME_LIMIT_REASON;
-use crate::solver::precision::Ladder;
+use crate::solver::precision::{Escalations, Ladder};
 use crate::solver::system::{solve_system_excluding, DyadicBoxN, SystemOptions, SystemRoots};
 use crate::solver::univariate::{isolate_roots_in, refine_root, Root};
 use crate::solver::CurveOptions;
@@ -85,6 +86,17 @@ pub struct HlrOptions {
     /// sample ([`HlrPiece::behind`]): the start of its occlusion curve on the surface behind
     /// (the visible regions' trimming curves). Costs the ray tests of the patches behind.
     pub behind: bool,
+    /// How patch boundaries are matched into shared edges; `None`: the model's default
+    /// ([`crate::model::default_weld`]).
+    pub weld: Option<WeldTolerance>,
+}
+
+impl HlrOptions {
+    /// These options with shared edges matched by `weld`.
+    pub fn with_weld(mut self, weld: WeldTolerance) -> HlrOptions {
+        self.weld = Some(weld);
+        self
+    }
 }
 
 impl Default for HlrOptions {
@@ -101,6 +113,7 @@ impl Default for HlrOptions {
             tol: None,
             clusters: true,
             behind: false,
+            weld: None,
         }
     }
 }
@@ -191,6 +204,10 @@ pub struct HlrStats {
     pub refused_samples: usize,
     /// Silhouette boxes the curve solver left unresolved (their lines are not drawn).
     pub silhouette_unresolved: usize,
+    /// Sign questions by the precision level that settled them: the silhouette's, and the
+    /// root isolation that places samples and cuts on its arcs (the caller's
+    /// `opts.curve.ladder`).
+    pub escalations: Escalations,
 }
 
 /// A hidden-line drawing.
@@ -231,14 +248,11 @@ impl HiddenLines {
     }
 }
 
-/// Why a drawing cannot be made.
-pub use crate::analysis::projection::ProjectionError as HlrError;
-
 /// The hidden-line drawing of a model in a view.
 ///
 /// # Errors
-/// As [`crate::analysis::projection::Projection::new`] (an empty model, a zero direction, an eye not in
-/// front of every patch).
+/// [`Error::View`] as [`crate::analysis::projection::Projection::new`] (an empty model, a zero
+/// direction, an eye not in front of every patch).
 ///
 /// # Examples
 /// ```
@@ -249,28 +263,34 @@ pub use crate::analysis::projection::ProjectionError as HlrError;
 /// use limn::testing::shapes;
 /// let model = Model::from_patches(Format::Json, shapes::sphere(&Rational::from(1)));
 /// let view = View::Direction([1, 2, 3].map(Rational::from));
-/// let h = hidden_lines(&model, &view, &HlrOptions::default(), WeldTolerance::Exact).unwrap();
+/// let h = hidden_lines(&model, &view, &HlrOptions::default().with_weld(WeldTolerance::Exact))?;
 /// // The outline of a sphere is visible all round.
 /// assert!(h.pieces.iter().any(|p| p.kind == limn::analysis::visibility::hlr::LineKind::Silhouette));
 /// assert!(h.pieces.iter().filter(|p| p.kind == limn::analysis::visibility::hlr::LineKind::Silhouette)
 ///     .all(|p| p.qi == Some(0)));
+/// # Ok::<(), limn::Error>(())
 /// ```
-pub fn hidden_lines(
-    model: &Model,
-    view: &View,
-    opts: &HlrOptions,
-    weld: WeldTolerance,
-) -> Result<HiddenLines, HlrError> {
+pub fn hidden_lines(model: &Model, view: &View, opts: &HlrOptions) -> Result<HiddenLines, Error> {
+    let weld = opts
+        .weld
+        .unwrap_or_else(|| crate::model::default_weld(model));
     let scene = Scene::new(model, view, weld)?;
     // With a tolerance, the arcs' ends are located finely enough for it.
     let curve = refined_for(&opts.curve, model, opts.tol);
     let sil = silhouette_curves(model, view, &curve, weld, None);
     let mut stats = HlrStats {
         silhouette_unresolved: sil.unresolved.len(),
+        escalations: sil.escalations.clone(),
         ..HlrStats::default()
     };
     let mut segments = boundary_segments(&scene);
-    let arcs = silhouette_segments(&scene, &sil, &mut segments);
+    let arcs = silhouette_segments(
+        &scene,
+        &sil,
+        &mut segments,
+        &opts.curve.ladder,
+        &mut stats.escalations,
+    );
     let first_chain = segments.len() + arcs.iter().map(|a| a.chain).max().unwrap_or(0) + 1;
     let lines = zero_line_segments(&scene, &sil, &mut segments, &arcs, first_chain);
     segments.extend(arcs);
@@ -510,7 +530,7 @@ pub fn hidden_lines(
             })
         })
         .collect();
-    let per_segment: Vec<(Vec<HlrPiece>, usize, usize)> = segments
+    let per_segment: Vec<(Vec<HlrPiece>, usize, usize, Escalations)> = segments
         .par_iter()
         .zip(events.par_iter())
         .zip(inner.par_iter().zip(folds.par_iter()))
@@ -520,10 +540,11 @@ pub fn hidden_lines(
         })
         .collect();
     let mut pieces = Vec::new();
-    for (p, samples, refused) in per_segment {
+    for (p, samples, refused, escalations) in per_segment {
         pieces.extend(p);
         stats.samples += samples;
         stats.refused_samples += refused;
+        stats.escalations.merge(&escalations);
     }
     let facing = model
         .patches
@@ -672,7 +693,7 @@ fn pieces_of(
     acc: Option<&PatchAccuracy>,
     [inner, folds]: [&[[f64; 2]]; 2],
     opts: &HlrOptions,
-) -> (Vec<HlrPiece>, usize, usize) {
+) -> (Vec<HlrPiece>, usize, usize, Escalations) {
     // Whether a stretch is proven outline (a silhouette, a free side, a fold edge), proven
     // not (inside a cluster), or neither.
     let within = |rs: &[[f64; 2]], p0: f64, p1: f64| rs.iter().any(|r| r[0] <= p0 && p1 <= r[1]);
@@ -714,6 +735,7 @@ fn pieces_of(
     };
     let mut stretches: Vec<Stretch> = Vec::new();
     let (mut samples, mut refused) = (0, 0);
+    let mut escalations = Escalations::default();
     let mut push = |st: Stretch| {
         // Consecutive unresolved stretches are reported as one piece (the first reason).
         if let (Err(_), Some(last)) = (&st.qi, stretches.last_mut()) {
@@ -744,6 +766,7 @@ fn pieces_of(
                 opts,
                 &mut samples,
                 &mut refused,
+                &mut escalations,
             );
             let (qi, behind) = match found {
                 Ok((n, b)) => (Ok(n), b),
@@ -791,7 +814,7 @@ fn pieces_of(
             draw_piece(s, draw, acc, opts, out, st)
         })
         .collect();
-    (pieces, samples, refused)
+    (pieces, samples, refused, escalations)
 }
 
 /// A stretch drawn: traced to the tolerance if one is asked (a piece whose drawing is not
@@ -852,6 +875,7 @@ fn qi_of(
     opts: &HlrOptions,
     samples: &mut usize,
     refused: &mut usize,
+    escalations: &mut Escalations,
 ) -> Result<(usize, Option<Behind>), String> {
     if opts.curve.past_deadline() {
         return Err(TIME_LIMIT_REASON.to_string());
@@ -862,7 +886,7 @@ fn qi_of(
         let Some(c) = dyadic_between(p0 + a * w, p0 + b * w) else {
             continue;
         };
-        let Some(sample) = sample_at(s, &c) else {
+        let Some(sample) = sample_at(s, &c, &opts.curve.ladder, escalations) else {
             continue;
         };
         *samples += 1;
@@ -885,7 +909,12 @@ fn qi_of(
 }
 
 /// The sample point of a segment at parameter `c`.
-fn sample_at(s: &Segment, c: &Rational) -> Option<Sample> {
+fn sample_at(
+    s: &Segment,
+    c: &Rational,
+    ladder: &Ladder,
+    stats: &mut Escalations,
+) -> Option<Sample> {
     if let Some((axis, at)) = s.line {
         let mut uv = [at.to_rational(), at.to_rational()];
         uv[1 - axis] = c.clone();
@@ -899,13 +928,12 @@ fn sample_at(s: &Segment, c: &Rational) -> Option<Sample> {
         (Some(g), _) => {
             let m = 1 - s.axis;
             let line = fix_axis(g, s.axis, c);
-            let stats = &mut Default::default();
             let (lo, hi) = s.domain[m];
-            let roots = isolate_roots_in(&line, lo, hi, &Ladder::default(), 40, stats);
+            let roots = isolate_roots_in(&line, lo, hi, ladder, 40, stats);
             if roots.roots.len() != 1 || !roots.unresolved.is_empty() {
                 return None;
             }
-            let r = refine_root(&line, roots.roots[0], 1e-12, &Ladder::default(), stats);
+            let r = refine_root(&line, roots.roots[0], 1e-12, ladder, stats);
             let Root::Between { lo, hi } = r else {
                 return None;
             };

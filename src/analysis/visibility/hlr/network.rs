@@ -9,7 +9,7 @@ use crate::analysis::visibility::scene::{ratio_bounds, ImageBounds, Scene};
 use crate::bernstein::Bernstein;
 use crate::number::{Interval, Precision, Rational, Sign};
 use crate::solver::dyadic::Dyadic;
-use crate::solver::precision::Ladder;
+use crate::solver::precision::{Escalations, Ladder};
 use crate::solver::system::DyadicBoxN;
 use crate::solver::univariate::{isolate_roots_in, refine_root};
 use crate::solver::CrossingId;
@@ -339,6 +339,8 @@ pub(super) fn silhouette_segments(
     scene: &Scene,
     sil: &crate::analysis::contour::curves::Silhouette,
     boundary: &mut [Segment],
+    ladder: &Ladder,
+    stats: &mut Escalations,
 ) -> Vec<Segment> {
     let mut out = Vec::new();
     let mut chain = boundary.len();
@@ -420,7 +422,7 @@ pub(super) fn silhouette_segments(
                 };
                 // Along the branch, vertex a comes first.
                 let forward = whole.vertices[0].param[0] <= whole.range[0];
-                let mut pieces = split_monotone(whole, 6, &mut next_id);
+                let mut pieces = split_monotone(whole, 6, &mut next_id, ladder, stats);
                 if !forward {
                     pieces.reverse();
                 }
@@ -439,7 +441,13 @@ pub(super) fn silhouette_segments(
 /// An arc cut at dyadic parameters (bisection, up to `depth` times) into pieces whose images
 /// are monotone; the cut points become shared vertices. Pieces never made monotone stay (their
 /// self-crossings are reported unresolved).
-pub(super) fn split_monotone(s: Segment, depth: u32, next_id: &mut usize) -> Vec<Segment> {
+pub(super) fn split_monotone(
+    s: Segment,
+    depth: u32,
+    next_id: &mut usize,
+    ladder: &Ladder,
+    stats: &mut Escalations,
+) -> Vec<Segment> {
     if s.monotone.is_some() || depth == 0 {
         return vec![s];
     }
@@ -457,19 +465,11 @@ pub(super) fn split_monotone(s: Segment, depth: u32, next_id: &mut usize) -> Vec
     // The arc's point on the line axis = mid: the only root of g there in the cell.
     let m = 1 - s.axis;
     let line = fix_axis(&g, s.axis, &mid.to_rational());
-    let stats = &mut Default::default();
-    let roots = isolate_roots_in(
-        &line,
-        s.domain[m].0,
-        s.domain[m].1,
-        &Ladder::default(),
-        40,
-        stats,
-    );
+    let roots = isolate_roots_in(&line, s.domain[m].0, s.domain[m].1, ladder, 40, stats);
     if roots.roots.len() != 1 || !roots.unresolved.is_empty() {
         return vec![s];
     }
-    let r = refine_root(&line, roots.roots[0], 1e-12, &Ladder::default(), stats);
+    let r = refine_root(&line, roots.roots[0], 1e-12, ladder, stats);
     let mut lo_uv = [mid.to_rational(), mid.to_rational()];
     let mut hi_uv = lo_uv.clone();
     lo_uv[m] = r.lo().to_rational();
@@ -504,8 +504,8 @@ pub(super) fn split_monotone(s: Segment, depth: u32, next_id: &mut usize) -> Vec
     *next_id += 1;
     let low = half([s.range[0], c], (lo, mid), true);
     let high = half([c, s.range[1]], (mid, hi), false);
-    let mut out = split_monotone(low, depth - 1, next_id);
-    out.extend(split_monotone(high, depth - 1, next_id));
+    let mut out = split_monotone(low, depth - 1, next_id, ladder, stats);
+    out.extend(split_monotone(high, depth - 1, next_id, ladder, stats));
     out
 }
 

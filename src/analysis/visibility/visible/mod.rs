@@ -40,6 +40,7 @@ use crate::analysis::visibility::facing::{facing, Facing};
 use crate::analysis::visibility::hlr::{hidden_lines, HlrOptions, ADJACENT_ASSUMPTION};
 use crate::analysis::visibility::ray::{layers_in_front, RayOptions, Sample};
 use crate::analysis::visibility::scene::Scene;
+use crate::error::Error;
 use crate::model::{Model, WeldTolerance};
 use crate::number::{Precision, Rational};
 use crate::solver::plane_curve::TIME_LIMIT_REASON;
@@ -77,6 +78,17 @@ pub struct VisibleOptions {
     /// The tolerance in model units within which the trimming curves are drawn (`None`:
     /// drawn, not bounded).
     pub tol: Option<f64>,
+    /// How patch boundaries are matched into shared edges; `None`: the model's default
+    /// ([`crate::model::default_weld`]).
+    pub weld: Option<WeldTolerance>,
+}
+
+impl VisibleOptions {
+    /// These options with shared edges matched by `weld`.
+    pub fn with_weld(mut self, weld: WeldTolerance) -> VisibleOptions {
+        self.weld = Some(weld);
+        self
+    }
 }
 
 impl Default for VisibleOptions {
@@ -92,6 +104,7 @@ impl Default for VisibleOptions {
             clusters: true,
             trimming: true,
             tol: None,
+            weld: None,
         }
     }
 }
@@ -218,7 +231,7 @@ impl VisibleRegions {
 /// The visible regions of a model's patches in a view.
 ///
 /// # Errors
-/// As [`crate::analysis::projection::Projection::new`].
+/// [`Error::View`] as [`crate::analysis::projection::Projection::new`].
 ///
 /// # Examples
 /// ```
@@ -229,18 +242,22 @@ impl VisibleRegions {
 /// use limn::testing::shapes;
 /// let model = Model::from_patches(Format::Json, shapes::sphere(&Rational::from(1)));
 /// let view = View::Direction([1, 2, 3].map(Rational::from));
-/// let opts = VisibleOptions { max_depth: 5, ..VisibleOptions::default() };
-/// let r = visible_regions(&model, &view, &opts, WeldTolerance::Exact).unwrap();
+/// let mut opts = VisibleOptions::default().with_weld(WeldTolerance::Exact);
+/// opts.max_depth = 5;
+/// let r = visible_regions(&model, &view, &opts)?;
 /// // Half of a sphere's area faces any parallel view.
 /// let [lo, hi] = r.area_fraction;
 /// assert!(lo <= 0.5 && 0.5 <= hi && hi - lo < 0.5);
+/// # Ok::<(), limn::Error>(())
 /// ```
 pub fn visible_regions(
     model: &Model,
     view: &View,
     opts: &VisibleOptions,
-    weld: WeldTolerance,
-) -> Result<VisibleRegions, crate::analysis::projection::ProjectionError> {
+) -> Result<VisibleRegions, Error> {
+    let weld = opts
+        .weld
+        .unwrap_or_else(|| crate::model::default_weld(model));
     let scene = Scene::new(model, view, weld)?;
     let gs: Vec<_> = model
         .patches
@@ -296,9 +313,10 @@ pub fn visible_regions(
             tol: opts.tol.map(|t| t / OCCLUDER_TOL_DIVISOR),
             clusters: opts.clusters,
             behind: true,
+            weld: Some(weld),
             ..HlrOptions::default()
         };
-        let h = hidden_lines(model, view, &hopts, weld)?;
+        let h = hidden_lines(model, view, &hopts)?;
         let t = trimming::trimming_curves(model, &scene, &h, &opts.ray, opts.tol);
         missing_occlusions = t.missing;
         intersecting_patches = h.intersecting_patches.clone();
