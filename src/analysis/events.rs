@@ -63,6 +63,7 @@ pub struct SphereCurve {
 
 /// The event curves of a model on the viewing sphere, and what was not decided on the surface.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
+#[non_exhaustive]
 pub struct Events {
     /// The curves.
     pub curves: Vec<SphereCurve>,

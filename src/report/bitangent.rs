@@ -37,6 +37,7 @@ pub struct BitangentCurve {
 
 /// Work counts.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
+#[non_exhaustive]
 pub struct BitangentStats {
     /// Patches.
     pub patches: usize,
@@ -59,6 +60,7 @@ pub struct BitangentStats {
 
 /// The document of `limn curves --kind bitangent`.
 #[derive(Clone, Debug, serde::Serialize)]
+#[non_exhaustive]
 pub struct BitangentReport {
     /// The model file.
     pub model: String,

@@ -101,6 +101,7 @@ pub struct FamilySummary {
 
 /// The document of `limn events`.
 #[derive(Clone, Debug, serde::Serialize)]
+#[non_exhaustive]
 pub struct EventsReport {
     /// The model file.
     pub model: String,

@@ -56,6 +56,7 @@ pub struct UnanalysedSide {
 
 /// Work counts.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
+#[non_exhaustive]
 pub struct FlecnodalStats {
     /// Patches.
     pub patches: usize,
@@ -70,6 +71,7 @@ pub struct FlecnodalStats {
 
 /// The document of `limn curves --kind flecnodal`.
 #[derive(Clone, Debug, serde::Serialize)]
+#[non_exhaustive]
 pub struct FlecnodalReport {
     /// The model file.
     pub model: String,

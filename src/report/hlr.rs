@@ -24,6 +24,7 @@ pub struct UnresolvedPiece {
 /// The JSON document of `limn hlr --format json` (field names are a public contract, see
 /// README).
 #[derive(Clone, Debug, serde::Serialize)]
+#[non_exhaustive]
 pub struct HlrReport {
     /// The model file.
     pub model: String,

@@ -23,6 +23,7 @@ pub struct UnresolvedSummary {
 /// The JSON document of `limn silhouette --format json` (field names are a public contract,
 /// see README).
 #[derive(Clone, Debug, serde::Serialize)]
+#[non_exhaustive]
 pub struct SilhouetteReport {
     /// The model file.
     pub model: String,
@@ -59,6 +60,7 @@ pub struct SilhouetteReport {
 
 /// Work counters of a silhouette run.
 #[derive(Clone, Debug, serde::Serialize)]
+#[non_exhaustive]
 pub struct SilhouetteStats {
     /// Boxes examined.
     pub boxes: usize,

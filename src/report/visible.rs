@@ -6,6 +6,7 @@ use std::collections::BTreeMap;
 
 /// The JSON document of `limn visible --format json`.
 #[derive(Clone, Debug, serde::Serialize)]
+#[non_exhaustive]
 pub struct VisibleReport {
     /// The model file.
     pub model: String,

@@ -14,5 +14,5 @@ pub mod univariate;
 
 pub use dyadic::{Dyadic, DyadicBox};
 pub use plane_curve::{solve_curve, solve_curve_cut, CrossingId, CurveOptions, CurveTopology};
-pub use precision::{Escalations, Ladder, Level, Question};
+pub use precision::{Escalations, Ladder, Level, Policy, Question};
 pub use univariate::{isolate_roots, isolate_roots_in, refine_root, Root, Roots};

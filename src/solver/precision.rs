@@ -90,6 +90,24 @@ impl Escalations {
     }
 }
 
+/// What a computation that decides signs is handed: the caller's ladder, and the tally into
+/// which it counts the level that settled each question (so that the caller's settings are
+/// used and the counts reach the caller's report).
+#[derive(Debug)]
+pub struct Policy<'a> {
+    /// The ladder to climb.
+    pub ladder: &'a Ladder,
+    /// Where the questions are counted.
+    pub counts: &'a mut Escalations,
+}
+
+impl<'a> Policy<'a> {
+    /// The policy of this ladder, counting into `counts`.
+    pub fn new(ladder: &'a Ladder, counts: &'a mut Escalations) -> Policy<'a> {
+        Policy { ladder, counts }
+    }
+}
+
 impl Ladder {
     /// Answers the question, starting with f64 intervals. Returns the answer and the level
     /// that settled it (`None` twice if no level did), and records it in `stats`.

@@ -21,6 +21,7 @@ use crate::solver::dyadic::Dyadic;
 
 /// Budgets of the system solver.
 #[derive(Clone, Debug)]
+#[non_exhaustive]
 pub struct SystemOptions {
     /// The deepest subdivision (box sides 2^-depth of the domain's).
     pub max_depth: u32,

@@ -35,6 +35,7 @@ use rayon::prelude::*;
 
 /// What to compute.
 #[derive(Clone, Debug)]
+#[non_exhaustive]
 pub struct BitangentOptions {
     /// Budgets of the curve solver (its `tolerance` and `accept` are set from
     /// `tolerance`).
@@ -207,6 +208,7 @@ impl PairBitangents {
 
 /// The bitangents of a model.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
+#[non_exhaustive]
 pub struct BitangentCurves {
     /// The number of patches.
     pub patches: usize,

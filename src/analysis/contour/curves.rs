@@ -87,6 +87,7 @@ pub struct SolvedPatch {
 }
 /// The silhouette of a model.
 #[derive(Clone, Debug, serde::Serialize)]
+#[non_exhaustive]
 pub struct Silhouette {
     /// The curves.
     pub curves: Vec<SilhouetteCurve>,

@@ -17,6 +17,7 @@ use crate::bernstein::Bernstein;
 use crate::model::{Model, PatchAdjacency, WeldTolerance};
 use crate::number::{Precision, Rational};
 use crate::solver::plane_curve::zero_lines::{add_line, solve_curve_lines, LinedCurve, ZeroLine};
+use crate::solver::precision::Policy;
 use crate::solver::{CurveOptions, CurveTopology, Dyadic, Escalations};
 use crate::surface::{Edge, RationalPatch};
 use rayon::prelude::*;
@@ -256,13 +257,19 @@ pub fn model_curves(
             a,
             b,
             &mut joins,
-            &opts.ladder,
-            &mut escalations,
+            &mut Policy::new(&opts.ladder, &mut escalations),
         ) || join_zero_side(&mut tops, &gs, &quotients, a, b, &mut joins);
         if joined {
             continue;
         }
-        if ends_at_edge(&tops, &gs, a, b, &mut joins, &opts.ladder, &mut escalations) {
+        if ends_at_edge(
+            &tops,
+            &gs,
+            a,
+            b,
+            &mut joins,
+            &mut Policy::new(&opts.ladder, &mut escalations),
+        ) {
             // The function jumps across the edge: crossings common to both patches are joined,
             // every other curve reaching it ends there.
             open_boundary.push((a.patch, a.edge));

@@ -10,7 +10,8 @@ use crate::bernstein::Bernstein;
 use crate::model::SideUse;
 use crate::number::Rational;
 use crate::solver::plane_curve::zero_lines::{add_line, line_point};
-use crate::solver::{CrossingId, CurveTopology, Dyadic, Escalations, Ladder};
+use crate::solver::precision::Policy;
+use crate::solver::{CrossingId, CurveTopology, Dyadic};
 use crate::surface::{Edge, RationalPatch};
 use std::collections::BTreeMap;
 
@@ -55,8 +56,7 @@ pub(crate) fn parallel_normals(
     pb: &RationalPatch,
     eb: Edge,
     reversed: bool,
-    ladder: &Ladder,
-    stats: &mut Escalations,
+    policy: &mut Policy,
 ) -> bool {
     let (na, nb) = (pa.normal(), pb.normal());
     let side = |n: &[Bernstein<Rational>; 3], e: Edge, rev: bool| -> [Bernstein<Rational>; 3] {
@@ -80,7 +80,7 @@ pub(crate) fn parallel_normals(
         return false;
     }
     let dot = &(&(&a[0] * &b[0]) + &(&a[1] * &b[1])) + &(&a[2] * &b[2]);
-    let roots = crate::solver::isolate_roots(&dot, ladder, 40, stats);
+    let roots = crate::solver::isolate_roots(&dot, policy.ladder, 40, policy.counts);
     // A normal vanishing exactly at an end of the edge is a corner, which is joined by vertex
     // identity and excluded from the side's crossings: only interior zeros matter.
     let interior = |r: &crate::solver::Root| !matches!(r, crate::solver::Root::At { t } if *t == Dyadic::ZERO || *t == Dyadic::ONE);
@@ -117,8 +117,7 @@ pub(crate) fn join_side(
     a: SideUse,
     b: SideUse,
     joins: &mut Joins,
-    ladder: &Ladder,
-    stats: &mut Escalations,
+    policy: &mut Policy,
 ) -> bool {
     let pa = side_polynomial(&gs[a.patch], a.edge);
     let pb = side_polynomial(&gs[b.patch], b.edge);
@@ -128,9 +127,7 @@ pub(crate) fn join_side(
     }
     if !proportional(&pa, &pb, reversed)
         && !patches.is_some_and(|p| {
-            parallel_normals(
-                p[a.patch], a.edge, p[b.patch], b.edge, reversed, ladder, stats,
-            )
+            parallel_normals(p[a.patch], a.edge, p[b.patch], b.edge, reversed, policy)
         })
     {
         return false;
@@ -174,8 +171,7 @@ pub(crate) fn ends_at_edge(
     a: SideUse,
     b: SideUse,
     joins: &mut Joins,
-    ladder: &Ladder,
-    stats: &mut Escalations,
+    policy: &mut Policy,
 ) -> bool {
     let reversed = a.reversed != b.reversed;
     let (pa, pb) = (
@@ -201,7 +197,8 @@ pub(crate) fn ends_at_edge(
             if lo == hi {
                 return other.eval(&[lo.to_rational()]).cmp0() != std::cmp::Ordering::Equal;
             }
-            let r = crate::solver::isolate_roots_in(other, lo, hi, ladder, 40, stats);
+            let r =
+                crate::solver::isolate_roots_in(other, lo, hi, policy.ladder, 40, policy.counts);
             r.roots.is_empty() && r.unresolved.is_empty() && !r.identically_zero
         })
     };

@@ -121,6 +121,7 @@ mod tests {
     use super::*;
     use crate::analysis::contour::joins::{parallel_normals, proportional};
     use crate::analysis::contour::sides::side_polynomial;
+    use crate::solver::precision::Policy;
     use crate::solver::{Escalations, Ladder};
     use crate::surface::Edge;
 
@@ -142,8 +143,7 @@ mod tests {
             &b,
             Edge::U0,
             false,
-            &Ladder::default(),
-            &mut Escalations::default()
+            &mut Policy::new(&Ladder::default(), &mut Escalations::default())
         ));
         let v = View::Direction([Rational::from(1), Rational::from(2), Rational::from(3)]);
         let (ga, gb) = (silhouette_function(&a, &v), silhouette_function(&b, &v));
@@ -159,8 +159,7 @@ mod tests {
             &creased,
             Edge::U0,
             false,
-            &Ladder::default(),
-            &mut Escalations::default()
+            &mut Policy::new(&Ladder::default(), &mut Escalations::default())
         ));
         // Opposite parameter directions are handled by the reversal flag.
         let flipped = quad([[1, 1, 0], [1, 0, 0], [3, 1, 0], [2, 0, 0]]);
@@ -170,8 +169,7 @@ mod tests {
             &flipped,
             Edge::U0,
             true,
-            &Ladder::default(),
-            &mut Escalations::default()
+            &mut Policy::new(&Ladder::default(), &mut Escalations::default())
         ));
     }
 }

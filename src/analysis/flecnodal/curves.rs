@@ -175,6 +175,7 @@ impl PatchFlecnodal {
 
 /// The flecnodal curves of a model.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
+#[non_exhaustive]
 pub struct FlecnodalCurves {
     /// Per patch.
     pub patches: Vec<PatchFlecnodal>,

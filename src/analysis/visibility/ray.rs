@@ -61,6 +61,7 @@ pub enum Sample {
 
 /// Budgets of a ray test.
 #[derive(Clone, Debug)]
+#[non_exhaustive]
 pub struct RayOptions {
     /// Budgets of each system solve.
     pub system: SystemOptions,

@@ -178,6 +178,7 @@ pub struct Behind {
 
 /// Counts of the work done.
 #[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
+#[non_exhaustive]
 pub struct HlrStats {
     /// Line segments.
     pub segments: usize,
@@ -212,6 +213,7 @@ pub struct HlrStats {
 
 /// A hidden-line drawing.
 #[derive(Clone, Debug, serde::Serialize)]
+#[non_exhaustive]
 pub struct HiddenLines {
     /// The pieces, in line order.
     pub pieces: Vec<HlrPiece>,
@@ -530,7 +532,7 @@ pub fn hidden_lines(model: &Model, view: &View, opts: &HlrOptions) -> Result<Hid
             })
         })
         .collect();
-    let per_segment: Vec<(Vec<HlrPiece>, usize, usize, Escalations)> = segments
+    let per_segment: Vec<(Vec<HlrPiece>, SampleTally)> = segments
         .par_iter()
         .zip(events.par_iter())
         .zip(inner.par_iter().zip(folds.par_iter()))
@@ -540,11 +542,11 @@ pub fn hidden_lines(model: &Model, view: &View, opts: &HlrOptions) -> Result<Hid
         })
         .collect();
     let mut pieces = Vec::new();
-    for (p, samples, refused, escalations) in per_segment {
+    for (p, tally) in per_segment {
         pieces.extend(p);
-        stats.samples += samples;
-        stats.refused_samples += refused;
-        stats.escalations.merge(&escalations);
+        stats.samples += tally.samples;
+        stats.refused_samples += tally.refused;
+        stats.escalations.merge(&tally.escalations);
     }
     let facing = model
         .patches
@@ -693,7 +695,7 @@ fn pieces_of(
     acc: Option<&PatchAccuracy>,
     [inner, folds]: [&[[f64; 2]]; 2],
     opts: &HlrOptions,
-) -> (Vec<HlrPiece>, usize, usize, Escalations) {
+) -> (Vec<HlrPiece>, SampleTally) {
     // Whether a stretch is proven outline (a silhouette, a free side, a fold edge), proven
     // not (inside a cluster), or neither.
     let within = |rs: &[[f64; 2]], p0: f64, p1: f64| rs.iter().any(|r| r[0] <= p0 && p1 <= r[1]);
@@ -734,8 +736,7 @@ fn pieces_of(
         segment_end: x <= s.range[0] || x >= s.range[1],
     };
     let mut stretches: Vec<Stretch> = Vec::new();
-    let (mut samples, mut refused) = (0, 0);
-    let mut escalations = Escalations::default();
+    let mut tally = SampleTally::default();
     let mut push = |st: Stretch| {
         // Consecutive unresolved stretches are reported as one piece (the first reason).
         if let (Err(_), Some(last)) = (&st.qi, stretches.last_mut()) {
@@ -758,16 +759,7 @@ fn pieces_of(
             .min(s.range[1]);
         if next > cursor {
             let want_behind = opts.behind && outline(cursor, next) == Some(true);
-            let found = qi_of(
-                scene,
-                s,
-                [cursor, next],
-                want_behind,
-                opts,
-                &mut samples,
-                &mut refused,
-                &mut escalations,
-            );
+            let found = qi_of(scene, s, [cursor, next], want_behind, opts, &mut tally);
             let (qi, behind) = match found {
                 Ok((n, b)) => (Ok(n), b),
                 Err(e) => (Err(e), None),
@@ -814,7 +806,7 @@ fn pieces_of(
             draw_piece(s, draw, acc, opts, out, st)
         })
         .collect();
-    (pieces, samples, refused, escalations)
+    (pieces, tally)
 }
 
 /// A stretch drawn: traced to the tolerance if one is asked (a piece whose drawing is not
@@ -865,6 +857,17 @@ fn draw_piece(
     }
 }
 
+/// What the ray tests of a segment's pieces counted.
+#[derive(Debug, Default)]
+struct SampleTally {
+    /// Sample points tried.
+    samples: usize,
+    /// Samples whose ray test was refused.
+    refused: usize,
+    /// The sign questions that placed the samples.
+    escalations: Escalations,
+}
+
 /// The QI of a segment's stretch `[p0, p1]`, from the first proven sample, and with `behind`,
 /// if it is 0, what lies right behind that sample.
 fn qi_of(
@@ -873,9 +876,7 @@ fn qi_of(
     [p0, p1]: [f64; 2],
     behind: bool,
     opts: &HlrOptions,
-    samples: &mut usize,
-    refused: &mut usize,
-    escalations: &mut Escalations,
+    tally: &mut SampleTally,
 ) -> Result<(usize, Option<Behind>), String> {
     if opts.curve.past_deadline() {
         return Err(TIME_LIMIT_REASON.to_string());
@@ -886,10 +887,10 @@ fn qi_of(
         let Some(c) = dyadic_between(p0 + a * w, p0 + b * w) else {
             continue;
         };
-        let Some(sample) = sample_at(s, &c, &opts.curve.ladder, escalations) else {
+        let Some(sample) = sample_at(s, &c, &opts.curve.ladder, &mut tally.escalations) else {
             continue;
         };
-        *samples += 1;
+        tally.samples += 1;
         match layers(scene, &sample, &opts.ray, behind) {
             Ok(l) => {
                 let b = (behind && l.in_front == 0).then(|| Behind {
@@ -900,7 +901,7 @@ fn qi_of(
                 return Ok((l.in_front, b));
             }
             Err(e) => {
-                *refused += 1;
+                tally.refused += 1;
                 last = e;
             }
         }

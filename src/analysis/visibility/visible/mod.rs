@@ -184,6 +184,7 @@ pub struct PatchRegion {
 
 /// Counts of the work done.
 #[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
+#[non_exhaustive]
 pub struct VisibleStats {
     /// Leaf cells.
     pub cells: usize,
@@ -205,6 +206,7 @@ pub struct VisibleStats {
 
 /// The visible regions of a model in a view.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
+#[non_exhaustive]
 pub struct VisibleRegions {
     /// Per patch.
     pub patches: Vec<PatchRegion>,
