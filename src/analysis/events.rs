@@ -16,13 +16,14 @@
 //! see the same events, so both antipodes are drawn (`proofs/events.md`).
 
 use crate::analysis::bitangent::curves::{bitangent_curves, BitangentOptions};
-use crate::analysis::chords::space_curve::Evaluator;
 use crate::analysis::chords::sphere_curve::{largest, piece_error};
 use crate::analysis::contour::curves::Silhouette;
 use crate::analysis::contour::parabolic::AsymptoticRanges;
 use crate::analysis::flecnodal::curves::{flecnodal_curves, FlecnodalOptions};
 use crate::error::Error;
+use crate::geometry::vec3::cross;
 use crate::model::Model;
+use crate::surface::Evaluator;
 use rayon::prelude::*;
 
 /// The family of an event curve.
@@ -125,14 +126,6 @@ fn continuous(mut dirs: Vec<[f64; 3]>) -> Vec<[f64; 3]> {
 fn unit(v: [f64; 3]) -> Option<[f64; 3]> {
     let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
     (l > 0.0 && l.is_finite()).then(|| v.map(|x| x / l))
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
 }
 
 /// The asymptotic direction in space at a parabolic point `(u, v)` of a patch: the kernel of

@@ -21,7 +21,7 @@ use crate::model::Model;
 use crate::number::{Interval, Number, Precision, Rational};
 use crate::surface::{Edge, RationalPatch};
 
-type Poly = Bernstein<Rational>;
+use crate::bernstein::Poly;
 
 /// An exact image frame for a view.
 #[derive(Clone, Debug, PartialEq)]

@@ -24,5 +24,9 @@ mod subdivide;
 pub use poly::{Bernstein, BernsteinError, MAX_VARS};
 pub use power::antisymmetric_quotient;
 
+/// An exact polynomial in Bernstein form: the input every analysis derives its polynomials from
+/// (every other precision is computed from it).
+pub type Poly = Bernstein<crate::number::Rational>;
+
 #[cfg(test)]
 mod tests;

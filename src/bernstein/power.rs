@@ -3,7 +3,7 @@
 use super::Bernstein;
 use crate::number::Rational;
 
-type Poly = Bernstein<Rational>;
+use crate::bernstein::Poly;
 
 /// For univariate `a`, `b` (elevated to one degree n), the exact polynomial of degree
 /// (n − 1, n − 1) in (t, s) with `(t − s) Q(t, s) = a(t) b(s) − a(s) b(t)` (the product is

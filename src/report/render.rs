@@ -1,13 +1,13 @@
 //! SVG drawings of curves on a model, projected on the view plane.
 
 use crate::analysis::contour::curves::Silhouette;
-use crate::analysis::contour::drawing::DrawPatch;
 use crate::analysis::view::View;
 use crate::analysis::visibility::hlr::{HiddenLines, HlrPiece, LineKind};
 use crate::analysis::visibility::visible::VisibleRegions;
 use crate::geometry::vec3::{cross, dot, normalize};
 use crate::model::Model;
 use crate::solver::precision::Escalations;
+use crate::surface::DrawPatch;
 use std::fmt::Write;
 
 /// A projection of space onto the view plane: orthographic along a direction, or central from

@@ -1,12 +1,15 @@
 //! Layer 3: surfaces. Rational tensor-product Bézier patches in homogeneous coordinates,
 //! NURBS surfaces split into them by exact knot insertion, and triangle/polygon meshes.
-//! All coordinates are exact rationals, as the model file states them.
+//! All coordinates are exact rationals, as the model file states them; [`float_eval`] is the one
+//! f64 evaluator of a patch, with its rounding bound.
 
+pub mod float_eval;
 mod mesh;
 pub(crate) mod normal;
 mod nurbs;
 mod patch;
 
+pub use float_eval::{eval_f64, DrawPatch, Evaluator};
 pub use mesh::Mesh;
 pub use nurbs::{NurbsError, NurbsSurface};
 pub use patch::{Edge, PatchError, Point3, RationalPatch, MAX_PATCH_DEGREE};

@@ -2,9 +2,8 @@
 
 use super::RationalPatch;
 use crate::bernstein::Bernstein;
-use crate::number::Rational;
 
-type Poly = Bernstein<Rational>;
+use crate::bernstein::Poly;
 
 /// `a × b` for vectors of polynomials.
 pub(crate) fn cross(a: &[Poly; 3], b: &[Poly; 3]) -> [Poly; 3] {

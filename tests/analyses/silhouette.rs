@@ -529,7 +529,7 @@ fn teapot_horizontal_views_cross_the_rim_circle() {
 /// point (the difference computed exactly), and the bound is tiny beside the model's size.
 #[test]
 fn drawn_points_are_within_the_rounding_bound() {
-    use limn::analysis::contour::drawing::DrawPatch;
+    use limn::surface::DrawPatch;
     let mut patches: Vec<limn::surface::RationalPatch> = limn::testing::teapot()
         .patches
         .iter()

@@ -13,7 +13,7 @@
 //!   completeness (every point of the analytic occlusion curve within the bound of a drawn
 //!   one) separately.
 
-use limn::analysis::contour::drawing::eval_f64;
+use limn::surface::eval_f64;
 
 use limn::analysis::view::View;
 use limn::analysis::visibility::visible::{

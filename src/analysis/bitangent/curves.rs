@@ -17,9 +17,10 @@ use crate::analysis::bitangent::system::{
     DiagonalTest,
 };
 use crate::analysis::bitangent::tangent_lines::{tangent_plane_along, TangentLine};
-use crate::analysis::chords::space_curve::{Accuracy, Evaluator};
+use crate::analysis::chords::space_curve::Accuracy;
 use crate::analysis::chords::sphere_curve::{largest, piece_error};
 use crate::error::Error;
+use crate::geometry::vec3::cross;
 use crate::model::Model;
 use crate::number::{Interval, Number, Rational};
 use crate::solver::chain::chain;
@@ -30,6 +31,7 @@ use crate::solver::space_curve::{
     solve_space_curve_excluding, unwarp, unwarp_interval, warp, BoxVerdict, SpaceCurve,
     SpaceCurveOptions, NO_REGULAR_MINOR, UNRESOLVED_SINGULAR,
 };
+use crate::surface::Evaluator;
 use crate::surface::RationalPatch;
 use rayon::prelude::*;
 
@@ -343,14 +345,6 @@ fn cones_apart(a: &([f64; 3], f64), b: &([f64; 3], f64)) -> bool {
     let angle = c.acos();
     let reach = a.1 + b.1 + 1e-9;
     angle > reach && std::f64::consts::PI - angle > reach
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
 }
 
 fn unit_or_zero(v: [f64; 3]) -> [f64; 3] {

@@ -24,7 +24,7 @@ use crate::bernstein::Bernstein;
 use crate::number::{Interval, Number, Precision, Rational};
 use crate::surface::RationalPatch;
 
-type Poly = Bernstein<Rational>;
+use crate::bernstein::Poly;
 type IPoly = Bernstein<Interval>;
 
 /// The deflated normal `ν` of a patch and the sides divided out of it.

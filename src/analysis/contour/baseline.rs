@@ -13,7 +13,7 @@
 
 use crate::analysis::contour::silhouette::silhouette_function;
 
-use crate::analysis::contour::drawing::DrawPatch;
+use crate::surface::DrawPatch;
 
 use crate::analysis::contour::curves::SilhouetteCurve;
 

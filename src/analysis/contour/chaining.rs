@@ -3,11 +3,12 @@
 
 use crate::analysis::chords::plane_curve::{PatchAccuracy, Traced};
 use crate::analysis::contour::curves::{CurvePiece, Node, SilhouetteCurve, SingularPoint};
-use crate::analysis::contour::drawing::{densify, DrawPatch, DENSIFY_STEPS};
+use crate::analysis::contour::drawing::{densify, DENSIFY_STEPS};
 use crate::analysis::contour::joins::Joins;
 use crate::analysis::contour::sides::side_of;
 use crate::bernstein::Bernstein;
 use crate::solver::{CrossingId, CurveTopology};
+use crate::surface::DrawPatch;
 use crate::surface::{Edge, RationalPatch};
 use rayon::prelude::*;
 use std::collections::BTreeMap;

@@ -22,7 +22,7 @@ use crate::surface::normal::cross;
 use crate::surface::RationalPatch;
 use rayon::prelude::*;
 
-type Poly = Bernstein<Rational>;
+use crate::bernstein::Poly;
 
 fn dot(a: &[Poly; 3], b: &[Poly; 3]) -> Poly {
     &(&(&a[0] * &b[0]) + &(&a[1] * &b[1])) + &(&a[2] * &b[2])

@@ -9,12 +9,12 @@
 //! identically zero: planes, cylinders, cones) is flecnodal everywhere along its rulings: it is
 //! reported as degenerate, not solved.
 
-use crate::analysis::chords::space_curve::{Accuracy, Evaluator, TangentRanges, SIDES};
+use crate::analysis::chords::space_curve::{Accuracy, TangentRanges, SIDES};
+
 use crate::analysis::chords::sphere_curve::{largest, piece_error};
 use crate::analysis::contour::parabolic::parabolic_function;
 use crate::analysis::flecnodal::system::{flecnodal_system, Chart};
 use crate::analysis::projection::lift;
-use crate::bernstein::Bernstein;
 use crate::error::Error;
 use crate::model::Model;
 use crate::number::{Interval, Number, Rational};
@@ -25,10 +25,11 @@ use crate::solver::space_curve::{
     solve_space_curve_where, unwarp, unwarp_interval, warp, ArcAccept, SpaceCrossing, SpaceCurve,
     SpaceCurveOptions,
 };
+use crate::surface::Evaluator;
 use crate::surface::RationalPatch;
 use rayon::prelude::*;
 
-type Poly = Bernstein<Rational>;
+use crate::bernstein::Poly;
 
 /// What to compute.
 #[derive(Clone, Debug, Default)]

@@ -21,12 +21,11 @@
 //! is gone by construction; `(1, ±1)` appear in both charts), and `(u, v, s)` is a box.
 
 use crate::analysis::projection::lift;
-use crate::bernstein::Bernstein;
 use crate::number::Rational;
 use crate::surface::normal::cross;
 use crate::surface::RationalPatch;
 
-type Poly = Bernstein<Rational>;
+use crate::bernstein::Poly;
 
 /// How the direction `d = (a, b)` is written with `σ = 2s − 1`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]

@@ -18,7 +18,7 @@ use crate::bernstein::Bernstein;
 use crate::number::{Interval, Precision, Rational};
 use crate::surface::Edge;
 
-type Poly = Bernstein<Rational>;
+use crate::bernstein::Poly;
 type IPoly = Bernstein<Interval>;
 
 /// The sign factor that turns the Jacobian determinant on a side into

@@ -25,9 +25,10 @@
 
 pub use crate::analysis::projection::fix_axis;
 use crate::analysis::projection::{lift, side_point, ImagePolys};
-use crate::analysis::visibility::scene::{ratio_bounds, ImageBounds, Poly, Scene};
+use crate::analysis::visibility::scene::{ratio_bounds, ImageBounds, Scene};
 use crate::analysis::visibility::sheets::{fold_box, fold_box_around, injective_box, range_on};
 use crate::bernstein::Bernstein;
+use crate::bernstein::Poly;
 use crate::number::{Interval, Number, Precision, Rational};
 use crate::solver::dyadic::Dyadic;
 use crate::solver::system::{solve_system_excluding, DyadicBoxN, SystemOptions};

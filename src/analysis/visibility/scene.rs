@@ -3,12 +3,11 @@
 
 use crate::analysis::projection::{ImagePolys, Projection, ProjectionError};
 use crate::analysis::view::View;
-use crate::bernstein::Bernstein;
 use crate::model::{Model, PatchAdjacency, WeldTolerance};
 use crate::number::{Number, Rational};
 use crate::surface::Edge;
 
-pub(crate) type Poly = Bernstein<Rational>;
+use crate::bernstein::Poly;
 /// Image bounds of a patch, outward in `f64`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ImageBounds {

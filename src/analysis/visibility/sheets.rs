@@ -4,8 +4,9 @@
 
 use crate::analysis::chords::plane_curve::jet_on;
 use crate::analysis::visibility::ray::dy;
-use crate::analysis::visibility::scene::{Poly, Scene};
+use crate::analysis::visibility::scene::Scene;
 use crate::bernstein::Bernstein;
+use crate::bernstein::Poly;
 use crate::number::{Interval, Number, Precision, Rational};
 use crate::solver::system::DyadicBoxN;
 

@@ -5,9 +5,9 @@
 
 use crate::analysis::chords::plane_curve::PatchAccuracy;
 use crate::analysis::contour::drawing::zero_across;
-use crate::analysis::contour::drawing::DrawPatch;
 use crate::analysis::visibility::hlr::network::Segment;
 use crate::number::{Number, Precision, Rational};
+use crate::surface::DrawPatch;
 use crate::surface::Edge;
 
 /// Drawing points as (patch, u, v) and in space.

@@ -7,12 +7,11 @@ use crate::analysis::visibility::sheets::{
 
 use crate::analysis::visibility::hlr::*;
 use crate::analysis::visibility::scene::Scene;
-use crate::bernstein::Bernstein;
 use crate::number::{Interval, Number, Precision, Rational};
 use crate::solver::dyadic::Dyadic;
 use crate::solver::system::DyadicBoxN;
 
-type Poly = Bernstein<Rational>;
+use crate::bernstein::Poly;
 
 /// Two consecutive segments of one line whose images are monotone in a common direction with
 /// the same orientation: their union's image is monotone, so they meet only at their shared

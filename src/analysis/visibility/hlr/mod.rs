@@ -40,7 +40,6 @@ use systems::*;
 
 use crate::analysis::chords::plane_curve::PatchAccuracy;
 use crate::analysis::contour::drawing::refined_for;
-use crate::analysis::contour::drawing::DrawPatch;
 use crate::analysis::contour::silhouette::silhouette_curves;
 use crate::analysis::projection::side_point;
 use crate::analysis::view::View;
@@ -59,6 +58,7 @@ use crate::solver::precision::{Escalations, Ladder};
 use crate::solver::system::{solve_system_excluding, DyadicBoxN, SystemOptions, SystemRoots};
 use crate::solver::univariate::{isolate_roots_in, refine_root, Root};
 use crate::solver::CurveOptions;
+use crate::surface::DrawPatch;
 use crate::surface::Edge;
 use rayon::prelude::*;
 

@@ -15,7 +15,7 @@ use crate::solver::univariate::{isolate_roots_in, refine_root};
 use crate::solver::CrossingId;
 use crate::surface::Edge;
 
-type Poly = Bernstein<Rational>;
+use crate::bernstein::Poly;
 
 /// One segment of a line, with the exact polynomials its crossings are solved on.
 #[derive(Clone, Debug)]

@@ -3,12 +3,11 @@
 
 use crate::analysis::projection::{lift, ImagePolys};
 use crate::analysis::visibility::hlr::*;
-use crate::bernstein::{antisymmetric_quotient, Bernstein};
-use crate::number::Rational;
+use crate::bernstein::antisymmetric_quotient;
 use crate::solver::dyadic::Dyadic;
 use crate::solver::system::DyadicBoxN;
 
-type Poly = Bernstein<Rational>;
+use crate::bernstein::Poly;
 
 /// The self-crossings of a side's image: both coincidence equations divided by `t − s`.
 pub(super) fn self_crossing_system(s: &Segment) -> (Vec<Poly>, DyadicBoxN) {

@@ -33,7 +33,6 @@ mod trimming;
 
 pub use trimming::{chain_loops, MissingOcclusion, TrimCurve, TrimKind, TrimLoop};
 
-use crate::analysis::contour::drawing::DrawPatch;
 use crate::analysis::contour::silhouette::silhouette_function;
 use crate::analysis::view::View;
 use crate::analysis::visibility::facing::{facing, Facing};
@@ -45,6 +44,7 @@ use crate::model::{Model, WeldTolerance};
 use crate::number::{Precision, Rational};
 use crate::solver::plane_curve::TIME_LIMIT_REASON;
 use crate::solver::CurveOptions;
+use crate::surface::DrawPatch;
 use cells::{patch_leaves, Context, Leaf, LeafIndex};
 use rayon::prelude::*;
 use std::collections::BTreeMap;

@@ -22,7 +22,6 @@
 //! without bound: those stretches are reported with their bound, or unproven.
 
 use crate::analysis::chords::plane_curve::{derivs, partials_on, SurfaceBounds};
-use crate::analysis::contour::drawing::DrawPatch;
 use crate::analysis::projection::{side_point_f64, Projection};
 use crate::analysis::visibility::scene::Scene;
 use crate::analysis::visibility::sheets::range_on;
@@ -30,6 +29,7 @@ use crate::bernstein::Bernstein;
 use crate::model::Model;
 use crate::number::{Interval, Number, Precision};
 use crate::solver::system::inverse;
+use crate::surface::DrawPatch;
 use crate::surface::{Edge, RationalPatch};
 use rayon::prelude::*;
 

@@ -16,11 +16,11 @@ use crate::analysis::projection::ImagePolys;
 use crate::analysis::visibility::fold_edges::{continues_on, edge_orientations};
 use crate::analysis::visibility::scene::{same_degrees, ImageBounds, Scene};
 use crate::bernstein::Bernstein;
-use crate::number::{Interval, Number, Precision, Rational};
+use crate::number::{Interval, Number, Precision};
 use crate::surface::Edge;
 use std::sync::OnceLock;
 
-type Poly = Bernstein<Rational>;
+use crate::bernstein::Poly;
 type IPoly = Bernstein<Interval>;
 
 /// Image polynomials in f64 intervals, at common degrees (x, y, q) and (depth, w).

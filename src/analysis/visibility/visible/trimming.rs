@@ -9,7 +9,6 @@
 //! of QI 0, each drawn within its proven error bound, and the first point behind each visible
 //! outline piece. The curves of each patch are then chained into loops by their ends.
 
-use crate::analysis::contour::drawing::DrawPatch;
 use crate::analysis::projection::side_point_f64;
 use crate::analysis::visibility::hlr::{HiddenLines, HlrPiece, LineKind};
 use crate::analysis::visibility::ray::{layers_in_front, RayOptions, Sample};
@@ -17,6 +16,7 @@ use crate::analysis::visibility::scene::Scene;
 use crate::analysis::visibility::visible::occlusion::{Anchor, Lifting};
 use crate::model::Model;
 use crate::number::Rational;
+use crate::surface::DrawPatch;
 use crate::surface::Edge;
 use rayon::prelude::*;
 
