@@ -24,6 +24,8 @@
 //!
 //! Proofs of the guarantees the code relies on are in `proofs/` in the repository.
 
+#![warn(missing_docs)]
+
 pub mod analysis;
 pub mod bernstein;
 #[cfg(feature = "cli")]
