@@ -1,0 +1,301 @@
+//! The last stages of the drawing: each segment cut at its events into pieces, each piece's
+//! QI from a certified ray test at a sample point (`proofs/ray-count.md`), and the piece drawn
+//! (within the tolerance, with a bound, `proofs/hidden-lines.md`).
+
+use crate::analysis::visibility::hlr::drawing::*;
+use crate::analysis::visibility::hlr::network::*;
+
+use crate::analysis::chords::plane_curve::PatchAccuracy;
+use crate::analysis::projection::side_point;
+use crate::analysis::visibility::hlr::result::{Behind, HlrPiece, LineKind};
+use crate::analysis::visibility::hlr::{Event, HlrOptions};
+use crate::analysis::visibility::ray::{fix_axis, layers, Sample};
+use crate::analysis::visibility::scene::Scene;
+use crate::number::Rational;
+use crate::solver::plane_curve::TIME_LIMIT_REASON;
+use crate::solver::precision::{Escalations, Ladder};
+use crate::solver::univariate::{isolate_roots_in, refine_root, Root};
+use crate::surface::DrawPatch;
+
+/// The dyadic with the smallest denominator in the open interval `(lo, hi)` (lo < hi).
+pub(crate) fn dyadic_between(lo: f64, hi: f64) -> Option<Rational> {
+    for k in 1..=50u32 {
+        let scale = (1u64 << k) as f64;
+        let n = (lo * scale).floor() + 1.0;
+        if n / scale < hi {
+            let q = Rational::from((n as i64, 1i64 << k));
+            if q > 0 && q < 1 {
+                return Some(q);
+            }
+        }
+    }
+    None
+}
+/// A stretch of a segment between its events, before it is drawn.
+pub(crate) struct Stretch {
+    pub(crate) param: [f64; 2],
+    pub(crate) from: PieceEnd,
+    pub(crate) to: PieceEnd,
+    pub(crate) qi: Result<usize, String>,
+    pub(crate) behind: Option<Behind>,
+}
+/// The pieces of a segment between its events, with their QI, drawn (to `opts.tol` with
+/// `acc`, the bounds of the segment's patch).
+pub(crate) fn pieces_of(
+    scene: &Scene,
+    s: &Segment,
+    events: &[Event],
+    draw: &DrawPatch,
+    acc: Option<&PatchAccuracy>,
+    [inner, folds]: [&[[f64; 2]]; 2],
+    opts: &HlrOptions,
+) -> (Vec<HlrPiece>, SampleTally) {
+    // Whether a stretch is proven outline (a silhouette, a free side, a fold edge), proven
+    // not (inside a cluster), or neither.
+    let within = |rs: &[[f64; 2]], p0: f64, p1: f64| rs.iter().any(|r| r[0] <= p0 && p1 <= r[1]);
+    let outline = |p0: f64, p1: f64| -> Option<bool> {
+        if s.kind == LineKind::Silhouette || s.on.len() == 1 {
+            Some(true)
+        } else if within(inner, p0, p1) {
+            Some(false)
+        } else if s.on.len() == 2 && within(folds, p0, p1) {
+            Some(true)
+        } else {
+            None
+        }
+    };
+    let mut ev: Vec<&Event> = events
+        .iter()
+        .filter(|e| e.at[1] > s.range[0] && e.at[0] < s.range[1])
+        .collect();
+    ev.sort_by(|a, b| a.at[0].total_cmp(&b.at[0]));
+    let clip = |x: f64| x.clamp(s.range[0], s.range[1]);
+    // Where the true end of a stretch that stops at `x` lies: the union of the cut
+    // enclosures that hold x (a stretch bounded by an unresolved event ends exactly there).
+    let around = |x: f64| -> PieceEnd {
+        let mut at = [x, x];
+        for e in ev.iter().filter(|e| e.unresolved.is_none()) {
+            let (a, b) = (clip(e.at[0]), clip(e.at[1]));
+            if a <= x && x <= b {
+                at = [at[0].min(a), at[1].max(b)];
+            }
+        }
+        PieceEnd {
+            at,
+            segment_end: at[0] <= s.range[0] || at[1] >= s.range[1],
+        }
+    };
+    let exact = |x: f64| PieceEnd {
+        at: [x, x],
+        segment_end: x <= s.range[0] || x >= s.range[1],
+    };
+    let mut stretches: Vec<Stretch> = Vec::new();
+    let mut tally = SampleTally::default();
+    let mut push = |st: Stretch| {
+        // Consecutive unresolved stretches are reported as one piece (the first reason).
+        if let (Err(_), Some(last)) = (&st.qi, stretches.last_mut()) {
+            if last.qi.is_err() && last.param[1] >= st.param[0] {
+                last.param[1] = st.param[1];
+                last.to = st.to;
+                return;
+            }
+        }
+        stretches.push(st);
+    };
+    let mut cursor = s.range[0];
+    let mut from = around(cursor);
+    let mut i = 0;
+    while cursor < s.range[1] {
+        // The next event at or after the cursor.
+        let next = ev
+            .get(i)
+            .map_or(s.range[1], |e| e.at[0].max(cursor))
+            .min(s.range[1]);
+        if next > cursor {
+            let want_behind = opts.behind && outline(cursor, next) == Some(true);
+            let found = qi_of(scene, s, [cursor, next], want_behind, opts, &mut tally);
+            let (qi, behind) = match found {
+                Ok((n, b)) => (Ok(n), b),
+                Err(e) => (Err(e), None),
+            };
+            let to = match ev.get(i) {
+                Some(e) if e.unresolved.is_some() => exact(next),
+                _ => around(next),
+            };
+            push(Stretch {
+                param: [cursor, next],
+                from,
+                to,
+                qi,
+                behind,
+            });
+        }
+        let Some(e) = ev.get(i) else { break };
+        let end = e.at[1].min(s.range[1]).max(cursor);
+        if let Some(why) = &e.unresolved {
+            if end > next {
+                push(Stretch {
+                    param: [next, end],
+                    from: exact(next),
+                    to: exact(end),
+                    qi: Err(why.clone()),
+                    behind: None,
+                });
+            }
+        }
+        if end > cursor {
+            from = if e.unresolved.is_some() {
+                exact(end)
+            } else {
+                around(end)
+            };
+        }
+        cursor = cursor.max(end);
+        i += 1;
+    }
+    let pieces = stretches
+        .into_iter()
+        .map(|st| {
+            let out = outline(st.param[0], st.param[1]);
+            draw_piece(s, draw, acc, opts, out, st)
+        })
+        .collect();
+    (pieces, tally)
+}
+/// A stretch drawn: traced to the tolerance if one is asked (a piece whose drawing is not
+/// certified within it is not certified), else at evenly spaced parameters.
+pub(crate) fn draw_piece(
+    s: &Segment,
+    draw: &DrawPatch,
+    acc: Option<&PatchAccuracy>,
+    opts: &HlrOptions,
+    outline: Option<bool>,
+    st: Stretch,
+) -> HlrPiece {
+    let [p0, p1] = st.param;
+    let traced = match (opts.tol, acc) {
+        (Some(tol), Some(acc)) if !opts.curve.past_deadline() => {
+            traced_points(s, draw, acc, st.from, st.to, tol)
+        }
+        _ => None,
+    };
+    let (error_bound, (points_uv, points)) = match traced {
+        Some((drawn, bound)) => (Some(bound), drawn),
+        None => (None, draw_points(s, draw, p0, p1, opts.draw_steps)),
+    };
+    let (qi, mut reason) = match st.qi {
+        Ok(n) => (Some(n), None),
+        Err(e) => (None, Some(e)),
+    };
+    if let (Some(tol), None, None) = (opts.tol, error_bound, &reason) {
+        reason = Some(if opts.curve.past_deadline() {
+            TIME_LIMIT_REASON.to_string()
+        } else {
+            format!("its drawing is not proven within the tolerance {tol:e}")
+        });
+    }
+    HlrPiece {
+        kind: s.kind,
+        patch: s.patch,
+        edge: s.edge,
+        param: [p0, p1],
+        certified: reason.is_none(),
+        qi,
+        reason,
+        error_bound,
+        points,
+        points_uv,
+        outline,
+        behind: st.behind,
+    }
+}
+/// What the ray tests of a segment's pieces counted.
+#[derive(Debug, Default)]
+pub(crate) struct SampleTally {
+    /// Sample points tried.
+    pub(crate) samples: usize,
+    /// Samples whose ray test was refused.
+    pub(crate) refused: usize,
+    /// The sign questions that placed the samples.
+    pub(crate) escalations: Escalations,
+}
+/// The QI of a segment's stretch `[p0, p1]`, from the first proven sample, and with `behind`,
+/// if it is 0, what lies right behind that sample.
+pub(crate) fn qi_of(
+    scene: &Scene,
+    s: &Segment,
+    [p0, p1]: [f64; 2],
+    behind: bool,
+    opts: &HlrOptions,
+    tally: &mut SampleTally,
+) -> Result<(usize, Option<Behind>), String> {
+    if opts.curve.past_deadline() {
+        return Err(TIME_LIMIT_REASON.to_string());
+    }
+    let w = p1 - p0;
+    let mut last = String::from("no sample point found in the piece");
+    for (a, b) in [(0.25, 0.75), (0.1, 0.3), (0.7, 0.9)] {
+        let Some(c) = dyadic_between(p0 + a * w, p0 + b * w) else {
+            continue;
+        };
+        let Some(sample) = sample_at(s, &c, &opts.curve.ladder, &mut tally.escalations) else {
+            continue;
+        };
+        tally.samples += 1;
+        match layers(scene, &sample, &opts.ray, behind) {
+            Ok(l) => {
+                let b = (behind && l.in_front == 0).then(|| Behind {
+                    patch: s.patch,
+                    uv: sample.uv_enclosure(),
+                    first: l.first_behind().map(|h| h.cloned()),
+                });
+                return Ok((l.in_front, b));
+            }
+            Err(e) => {
+                tally.refused += 1;
+                last = e;
+            }
+        }
+    }
+    Err(last)
+}
+/// The sample point of a segment at parameter `c`.
+pub(crate) fn sample_at(
+    s: &Segment,
+    c: &Rational,
+    ladder: &Ladder,
+    stats: &mut Escalations,
+) -> Option<Sample> {
+    if let Some((axis, at)) = s.line {
+        let mut uv = [at.to_rational(), at.to_rational()];
+        uv[1 - axis] = c.clone();
+        return Some(Sample::Exact { patch: s.patch, uv });
+    }
+    match (&s.constraint, s.edge) {
+        (None, Some(edge)) => Some(Sample::Exact {
+            patch: s.patch,
+            uv: side_point(edge, c),
+        }),
+        (Some(g), _) => {
+            let m = 1 - s.axis;
+            let line = fix_axis(g, s.axis, c);
+            let (lo, hi) = s.domain[m];
+            let roots = isolate_roots_in(&line, lo, hi, ladder, 40, stats);
+            if roots.roots.len() != 1 || !roots.unresolved.is_empty() {
+                return None;
+            }
+            let r = refine_root(&line, roots.roots[0], 1e-12, ladder, stats);
+            let Root::Between { lo, hi } = r else {
+                return None;
+            };
+            Some(Sample::Silhouette {
+                patch: s.patch,
+                axis: s.axis,
+                at: c.clone(),
+                interval: [lo.to_rational(), hi.to_rational()],
+                g: g.clone(),
+            })
+        }
+        (None, None) => None,
+    }
+}
