@@ -338,10 +338,11 @@ pub(crate) fn hlr_command(args: HlrArgs, out: &mut dyn Write) -> Result<(), CliE
     let hopts = HlrOptions {
         curve: opts,
         tol: tol_abs,
+        weld: Some(weld),
         ..HlrOptions::default()
     };
     let h = pool
-        .install(|| hidden_lines(&m, &view, &hopts.clone().with_weld(weld)))
+        .install(|| hidden_lines(&m, &view, &hopts))
         .map_err(|e| CliError::input(format!("{name}: {e}")))?;
     let ms = start.elapsed().as_secs_f64() * 1e3;
     let report = HlrReport::new(&name, &view, &h, ms, pool.current_num_threads());
@@ -395,10 +396,11 @@ pub(crate) fn visible_command(args: VisibleArgs, out: &mut dyn Write) -> Result<
         curve: opts,
         max_depth: cell_depth,
         tol: tol_abs,
+        weld: Some(weld),
         ..VisibleOptions::default()
     };
     let r = pool
-        .install(|| visible_regions(&m, &view, &vopts.clone().with_weld(weld)))
+        .install(|| visible_regions(&m, &view, &vopts))
         .map_err(|e| CliError::input(format!("{name}: {e}")))?;
     let ms = start.elapsed().as_secs_f64() * 1e3;
     let report = VisibleReport::new(&name, &view, &r, cells, ms, pool.current_num_threads());

@@ -463,11 +463,31 @@ fn excluded_exact(exact: &[Bernstein<Rational>], b: &[[f64; 2]]) -> bool {
         .any(|p| excludes(&p.restrict_box_rational(&lo, &hi).convert(Precision::F64)))
 }
 
-fn within(inner: &[[f64; 2]], outer: &[[f64; 2]]) -> bool {
+/// Whether the box `inner` lies in the closed box `outer`.
+pub(crate) fn within(inner: &[[f64; 2]], outer: &[[f64; 2]]) -> bool {
     inner
         .iter()
         .zip(outer)
         .all(|(a, b)| b[0] <= a[0] && a[1] <= b[1])
+}
+
+/// Whether two closed boxes share interior points.
+pub(crate) fn overlaps(a: &[[f64; 2]], b: &[[f64; 2]]) -> bool {
+    a.iter().zip(b).all(|(x, y)| x[0] < y[1] && y[0] < x[1])
+}
+
+/// A box without one coordinate (its projection on a face hyperplane).
+pub(crate) fn without(b: &[[f64; 2]], axis: usize) -> Vec<[f64; 2]> {
+    b.iter()
+        .enumerate()
+        .filter(|&(k, _)| k != axis)
+        .map(|(_, e)| *e)
+        .collect()
+}
+
+/// A dyadic box's corners in f64 (exact: dyadics of the solver's depths are f64 numbers).
+pub(crate) fn f64_box(cell: &DyadicBoxN) -> Vec<[f64; 2]> {
+    cell.iter().map(|d| [d.0.to_f64(), d.1.to_f64()]).collect()
 }
 
 /// Isolates the roots of the square system `square` (n polynomials in n variables) on the

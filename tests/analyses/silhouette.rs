@@ -567,3 +567,20 @@ fn drawn_points_are_within_the_rounding_bound() {
     }
     assert!(checked > 1500);
 }
+
+/// The library refuses the zero direction (the CLI did before; the front door now does too),
+/// rather than certifying an answer for a view that is no view.
+#[test]
+fn the_zero_direction_is_refused() {
+    let m = Model::from_patches(Format::Json, shapes::sphere(&Rational::from(1)));
+    let r = silhouette(&m, &View::direction([0, 0, 0]), &ContourOptions::default());
+    assert!(
+        matches!(r, Err(limn::Error::View(_))),
+        "{:?}",
+        r.map(|s| s.curves.len())
+    );
+    // A direction along an axis is a view: the equator, one closed curve.
+    let s = silhouette(&m, &View::direction([0, 0, 1]), &ContourOptions::default()).unwrap();
+    assert_eq!(s.curves.len(), 1);
+    assert!(s.curves[0].closed && s.topology_certified());
+}

@@ -1,8 +1,9 @@
 //! Gluing the boxes' arcs at their shared face crossings into the curve's branches.
 
 use crate::solver::dyadic::Dyadic;
-use crate::solver::space_curve::subdivision::{within, without, RawArc, RawCrossing};
+use crate::solver::space_curve::subdivision::{RawArc, RawCrossing};
 use crate::solver::space_curve::topology::{SpaceArc, SpaceBranch, SpaceCrossing, SpaceCurve};
+use crate::solver::system::{within, without};
 use std::collections::HashMap;
 
 /// Names each crossing once (two raw crossings on one hyperplane are the same point when one's

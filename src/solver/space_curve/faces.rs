@@ -4,7 +4,7 @@
 use crate::bernstein::Bernstein;
 use crate::number::{Interval, Number};
 use crate::solver::space_curve::regular_minor::excludes;
-use crate::solver::space_curve::subdivision::within;
+use crate::solver::system::within;
 use crate::solver::system::{
     krawczyk, krawczyk_in_box, krawczyk_verdict, newton, KrawczykVerdict, SystemOptions,
 };

@@ -7,13 +7,12 @@ use crate::solver::dyadic::Dyadic;
 use crate::solver::space_curve::singular_branches::{
     exact_singular_point, simple_points_near, ExactPartials, SingularPoint,
 };
-use crate::solver::space_curve::subdivision::{
-    f64_box, overlaps, within, RawArc, RawCrossing, Settled, Solver,
-};
+use crate::solver::space_curve::subdivision::{RawArc, RawCrossing, Settled, Solver};
 use crate::solver::space_curve::topology::{SpaceCurve, SpaceUnresolved};
 use crate::solver::space_curve::{SpaceCurveOptions, NO_REGULAR_MINOR};
 use crate::solver::space_curve::{STAR_MIN_DEPTH, UNRESOLVED_SINGULAR};
 use crate::solver::system::DyadicBoxN;
+use crate::solver::system::{f64_box, overlaps, within};
 
 /// What the subdivision decided, before the crossings are named: the crossings and arcs of
 /// the settled leaves, and the leaves the caller dropped or gave up on (which no star box may

@@ -18,7 +18,7 @@ use crate::solver::space_curve::singular_branches::{
 use crate::solver::space_curve::singular_search::Leaves;
 use crate::solver::space_curve::topology::{SpaceCurve, SpaceUnresolved};
 use crate::solver::space_curve::{BoxVerdict, SpaceCurveOptions, NO_REGULAR_MINOR};
-use crate::solver::system::{split_box, DyadicBoxN};
+use crate::solver::system::{f64_box, split_box, DyadicBoxN};
 use std::collections::HashMap;
 
 /// A crossing as one box found it.
@@ -462,27 +462,6 @@ impl Solver<'_> {
             .collect();
         (devs, accurate)
     }
-}
-/// A box without one coordinate (its projection on a face hyperplane).
-pub(crate) fn without(b: &[[f64; 2]], axis: usize) -> Vec<[f64; 2]> {
-    b.iter()
-        .enumerate()
-        .filter(|&(k, _)| k != axis)
-        .map(|(_, e)| *e)
-        .collect()
-}
-pub(crate) fn f64_box(cell: &DyadicBoxN) -> Vec<[f64; 2]> {
-    cell.iter().map(|d| [d.0.to_f64(), d.1.to_f64()]).collect()
-}
-pub(crate) fn within(inner: &[[f64; 2]], outer: &[[f64; 2]]) -> bool {
-    inner
-        .iter()
-        .zip(outer)
-        .all(|(a, b)| b[0] <= a[0] && a[1] <= b[1])
-}
-/// Whether two closed boxes share interior points.
-pub(crate) fn overlaps(a: &[[f64; 2]], b: &[[f64; 2]]) -> bool {
-    a.iter().zip(b).all(|(x, y)| x[0] < y[1] && y[0] < x[1])
 }
 /// The subdivision: every box excluded, settled (its crossings and arcs added to `leaves`),
 /// dropped by the caller, or unresolved (added to `out`).

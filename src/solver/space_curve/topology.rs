@@ -5,8 +5,8 @@
 use crate::number::{Interval, Number, Rational};
 use crate::solver::dyadic::Dyadic;
 use crate::solver::precision::Escalations;
-use crate::solver::space_curve::subdivision::{within, without};
 use crate::solver::space_curve::warp::unwarp_exact;
+use crate::solver::system::{within, without};
 
 /// A point where the curve crosses a face of a box, named once for all boxes that share it.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
