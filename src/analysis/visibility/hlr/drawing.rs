@@ -5,7 +5,7 @@
 
 use crate::analysis::chords::plane_curve::PatchAccuracy;
 use crate::analysis::contour::drawing::zero_across;
-use crate::analysis::visibility::hlr::network::Segment;
+use crate::analysis::visibility::hlr::lines::Segment;
 use crate::number::{Number, Precision, Rational};
 use crate::surface::DrawPatch;
 use crate::surface::Edge;

@@ -5,7 +5,11 @@ use crate::analysis::visibility::sheets::{
     fold_box_around, injective_box_around, quotient_jet, range_on,
 };
 
-use crate::analysis::visibility::hlr::*;
+use crate::analysis::visibility::hlr::lines::{
+    dyadic_ceil, dyadic_floor, find_monotone, monotone_along, narrow_to_curve, strict_sign,
+    sub_domain, Key, Segment, Vertex,
+};
+use crate::analysis::visibility::hlr::result::LineKind;
 use crate::analysis::visibility::scene::Scene;
 use crate::number::{Interval, Number, Precision, Rational};
 use crate::solver::dyadic::Dyadic;

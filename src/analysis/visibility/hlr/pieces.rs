@@ -3,19 +3,25 @@
 //! (within the tolerance, with a bound, `proofs/hidden-lines.md`).
 
 use crate::analysis::visibility::hlr::drawing::*;
-use crate::analysis::visibility::hlr::network::*;
+use crate::analysis::visibility::hlr::lines::*;
 
 use crate::analysis::chords::plane_curve::PatchAccuracy;
+use crate::analysis::contour::curves::Silhouette;
 use crate::analysis::projection::side_point;
+use crate::analysis::visibility::hlr::crossings::Event;
+use crate::analysis::visibility::hlr::result::HlrStats;
 use crate::analysis::visibility::hlr::result::{Behind, HlrPiece, LineKind};
-use crate::analysis::visibility::hlr::{Event, HlrOptions};
+use crate::analysis::visibility::hlr::roles::Roles;
+use crate::analysis::visibility::hlr::HlrOptions;
 use crate::analysis::visibility::ray::{fix_axis, layers, Sample};
 use crate::analysis::visibility::scene::Scene;
+use crate::model::Model;
 use crate::number::Rational;
 use crate::solver::plane_curve::TIME_LIMIT_REASON;
 use crate::solver::precision::{Escalations, Ladder};
 use crate::solver::univariate::{isolate_roots_in, refine_root, Root};
 use crate::surface::DrawPatch;
+use rayon::prelude::*;
 
 /// The dyadic with the smallest denominator in the open interval `(lo, hi)` (lo < hi).
 pub(crate) fn dyadic_between(lo: f64, hi: f64) -> Option<Rational> {
@@ -31,6 +37,54 @@ pub(crate) fn dyadic_between(lo: f64, hi: f64) -> Option<Rational> {
     }
     None
 }
+/// Stage 4: every segment cut at its events into pieces, each with its QI and drawn.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn all_pieces(
+    model: &Model,
+    scene: &Scene,
+    sil: &Silhouette,
+    segments: &[Segment],
+    events: &[Vec<Event>],
+    roles: &Roles,
+    opts: &HlrOptions,
+    stats: &mut HlrStats,
+) -> Vec<HlrPiece> {
+    let draws: Vec<DrawPatch> = model
+        .patches
+        .iter()
+        .map(|p| DrawPatch::new(&p.surface))
+        .collect();
+    // The accuracy bounds of each patch with a line, for drawing to a tolerance.
+    let accuracy: Vec<Option<PatchAccuracy>> = (0..model.patches.len())
+        .into_par_iter()
+        .map(|i| {
+            let used = segments.iter().any(|s| s.patch == i);
+            let surface = &model.patches[i].surface;
+            opts.tol.filter(|_| used).map(|_| match sil.solved.get(i) {
+                Some(solved) => PatchAccuracy::new(surface, &solved.g),
+                None => PatchAccuracy::lines_only(surface),
+            })
+        })
+        .collect();
+    let per_segment: Vec<(Vec<HlrPiece>, SampleTally)> = segments
+        .par_iter()
+        .zip(events.par_iter())
+        .zip(roles.inner.par_iter().zip(roles.folds.par_iter()))
+        .map(|((s, ev), (inner, folds))| {
+            let acc = accuracy[s.patch].as_ref();
+            pieces_of(scene, s, ev, &draws[s.patch], acc, [inner, folds], opts)
+        })
+        .collect();
+    let mut pieces = Vec::new();
+    for (p, tally) in per_segment {
+        pieces.extend(p);
+        stats.samples += tally.samples;
+        stats.refused_samples += tally.refused;
+        stats.escalations.merge(&tally.escalations);
+    }
+    pieces
+}
+
 /// A stretch of a segment between its events, before it is drawn.
 pub(crate) struct Stretch {
     pub(crate) param: [f64; 2],

@@ -2,7 +2,7 @@
 //! crossing itself, a segment passing through a patch.
 
 use crate::analysis::projection::{lift, ImagePolys};
-use crate::analysis::visibility::hlr::*;
+use crate::analysis::visibility::hlr::lines::Segment;
 use crate::bernstein::antisymmetric_quotient;
 use crate::solver::dyadic::Dyadic;
 use crate::solver::system::DyadicBoxN;

@@ -1,9 +1,12 @@
-//! The line network of a hidden-line drawing: patch boundaries (each edge once) and silhouette
-//! arcs cut into segments whose images are monotone, with the vertices where lines meet in
-//! space (patch corners, silhouette junctions on sides, cut points).
+//! Stage 1 of the drawing: the candidate lines, cut into segments. The lines are the patch
+//! boundaries (each edge once), the silhouette arcs of the certified silhouette (cut at
+//! dyadic parameters until each piece's image is monotone in one image direction) and the
+//! silhouette lines inside patches, with the vertices where lines meet in space (patch
+//! corners, silhouette junctions on sides, cut points).
 
+use crate::analysis::contour::curves::Silhouette;
 use crate::analysis::projection::{side_point, ImagePolys};
-use crate::analysis::visibility::hlr::*;
+use crate::analysis::visibility::hlr::result::LineKind;
 use crate::analysis::visibility::ray::fix_axis;
 use crate::analysis::visibility::scene::{ratio_bounds, ImageBounds, Scene};
 use crate::bernstein::Bernstein;
@@ -16,6 +19,24 @@ use crate::solver::CrossingId;
 use crate::surface::Edge;
 
 use crate::bernstein::Poly;
+
+/// Every line of the drawing as segments: the sides first, then the silhouette arcs, then the
+/// silhouette lines inside patches; the junctions of arcs and lines on sides are the sides'
+/// vertices.
+pub(super) fn candidate_lines(
+    scene: &Scene,
+    sil: &Silhouette,
+    ladder: &Ladder,
+    stats: &mut Escalations,
+) -> Vec<Segment> {
+    let mut segments = boundary_segments(scene);
+    let arcs = silhouette_segments(scene, sil, &mut segments, ladder, stats);
+    let first_chain = segments.len() + arcs.iter().map(|a| a.chain).max().unwrap_or(0) + 1;
+    let lines = zero_line_segments(scene, sil, &mut segments, &arcs, first_chain);
+    segments.extend(arcs);
+    segments.extend(lines);
+    segments
+}
 
 /// One segment of a line, with the exact polynomials its crossings are solved on.
 #[derive(Clone, Debug)]
@@ -201,7 +222,7 @@ pub(super) fn side_uv(
 }
 
 /// The boundary lines: each distinct edge once, as one segment.
-pub(super) fn boundary_segments(scene: &Scene) -> Vec<Segment> {
+fn boundary_segments(scene: &Scene) -> Vec<Segment> {
     let mut out = Vec::new();
     for (chain, users) in scene.adjacency.edges.iter().enumerate() {
         let first = users[0];
@@ -335,9 +356,9 @@ pub(super) fn crossing_vertex(
 
 /// The silhouette arcs, one segment per certified cell; the arcs of one branch form a line.
 /// Their ends on sides are added to the sides as vertices (junctions).
-pub(super) fn silhouette_segments(
+fn silhouette_segments(
     scene: &Scene,
-    sil: &crate::analysis::contour::curves::Silhouette,
+    sil: &Silhouette,
     boundary: &mut [Segment],
     ladder: &Ladder,
     stats: &mut Escalations,
@@ -614,9 +635,9 @@ pub(super) fn dyadic_ceil(x: &Rational) -> Rational {
 /// an axis line `u = c` or `v = c`, found exactly by the curve solver): each is a segment like a
 /// side, a fold curve of its patch. Their ends on sides are junctions of those sides; the
 /// crossings of the patch's other silhouette arcs on them are their vertices.
-pub(super) fn zero_line_segments(
+fn zero_line_segments(
     scene: &Scene,
-    sil: &crate::analysis::contour::curves::Silhouette,
+    sil: &Silhouette,
     boundary: &mut [Segment],
     arcs: &[Segment],
     first_chain: usize,

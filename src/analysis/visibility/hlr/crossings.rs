@@ -1,0 +1,311 @@
+//! Stage 3 of the drawing: where the QI along each line can change. Every pair of segments
+//! whose image boxes meet is solved as a square system for its image crossings, every side
+//! that is outline for its self-crossings, every segment against every patch that shares no
+//! corner with its own for penetrations ([`super::systems`]), by the certified system solver.
+//! The boxes around shared vertices, and around a silhouette arc where the fold lemma holds,
+//! are excluded with a proof that they hold no other crossing ([`super::lemmas`],
+//! `proofs/hidden-lines.md`). Every isolated root cuts the segments whose QI it can change;
+//! every unresolved box marks the stretches it covers as unresolved.
+
+use crate::analysis::contour::curves::Silhouette;
+use crate::analysis::visibility::hlr::lemmas::{
+    arc_fold_exclusion, common_monotone, fold_cover, vertex_exclusion,
+};
+use crate::analysis::visibility::hlr::lines::{bounds_on, Segment};
+use crate::analysis::visibility::hlr::result::HlrStats;
+use crate::analysis::visibility::hlr::roles::Roles;
+use crate::analysis::visibility::hlr::systems::{
+    crossing_system, penetration_system, self_crossing_system,
+};
+use crate::analysis::visibility::hlr::HlrOptions;
+use crate::analysis::visibility::scene::Scene;
+use crate::solver::dyadic::Dyadic;
+use crate::solver::plane_curve::TIME_LIMIT_REASON;
+use crate::solver::system::{solve_system_excluding, DyadicBoxN, SystemRoots};
+use rayon::prelude::*;
+use std::collections::BTreeSet;
+
+/// The cuts and unresolved stretches of every segment, and the pairs of patches found to pass
+/// through each other.
+pub(super) struct Crossings {
+    /// By segment: its events, in no order.
+    pub(super) events: Vec<Vec<Event>>,
+    /// Pairs `[p, q]` (p < q) with a proven penetration.
+    pub(super) intersecting: BTreeSet<[usize; 2]>,
+}
+
+/// The crossings, self-crossings and penetrations of the segments, as events on them.
+pub(super) fn crossings(
+    scene: &Scene,
+    sil: &Silhouette,
+    segments: &[Segment],
+    roles: &Roles,
+    opts: &HlrOptions,
+    stats: &mut HlrStats,
+) -> Crossings {
+    // Pairs of segments (with the boxes around shared vertices proven to hold no other
+    // crossing), self-crossings of sides, and segment-patch penetrations.
+    let mut events: Vec<Vec<Event>> = vec![Vec::new(); segments.len()];
+    // The silhouette regions the curve solver left unresolved are not segments: their
+    // crossings with the other lines are not searched, so every segment whose image can meet
+    // theirs is unresolved along its whole length.
+    let mut blockers: Vec<(usize, DyadicBoxN, String)> = Vec::new();
+    for (i, cell, _) in &sil.unresolved {
+        let b = vec![(cell.lo[0], cell.hi[0]), (cell.lo[1], cell.hi[1])];
+        blockers.push((
+            *i,
+            b,
+            format!("its image may cross the silhouette of patch {i} where the curve solver left it unresolved"),
+        ));
+    }
+    for (p, b, why) in &blockers {
+        let bounds = bounds_on(&scene.images[*p], b);
+        for (k, sg) in segments.iter().enumerate() {
+            if sg.bounds.meets_image(&bounds) {
+                events[k].push(Event::unresolved(sg.range, why.clone()));
+            }
+        }
+    }
+    let mut jobs: Vec<Job> = Vec::new();
+    for (a, sa) in segments.iter().enumerate() {
+        // Every vertex inside a segment cuts it (a junction on a side).
+        for v in &sa.vertices {
+            events[a].push(Event::cut(v.param));
+        }
+        // With what lies behind wanted, so does every end of a stretch of decided role.
+        if opts.behind {
+            for r in roles.inner[a].iter().chain(&roles.folds[a]) {
+                for x in r.iter().filter(|x| sa.range[0] < **x && **x < sa.range[1]) {
+                    events[a].push(Event::cut([*x, *x]));
+                }
+            }
+        }
+        match (&sa.constraint, &sa.monotone) {
+            // A stretch the surface continues across cannot change its own QI.
+            (None, _) if !roles.outline[a] => {}
+            (None, _) => jobs.push(Job::SelfCrossing(a)),
+            (Some(_), Some(_)) => {}
+            (Some(_), None) => events[a].push(Event::unresolved(
+                sa.range,
+                "its image is not proven free of self-crossings (a cusp of the outline?)".into(),
+            )),
+        }
+        for (b, sb) in segments.iter().enumerate().skip(a + 1) {
+            if !sa.bounds.meets_image(&sb.bounds) {
+                stats.culled_pairs += 1;
+                continue;
+            }
+            stats.pairs += 1;
+            if !roles.outline[a] && !roles.outline[b] {
+                stats.cluster_pairs += 1;
+                continue;
+            }
+            if sa.chain == sb.chain && sa.order.abs_diff(sb.order) == 1 && common_monotone(sa, sb) {
+                stats.monotone_pairs += 1;
+                continue;
+            }
+            jobs.push(Job::Pair(a, b));
+        }
+        for (j, jb) in scene.bounds.iter().enumerate() {
+            if sa.on.iter().any(|x| x.0 == j) || sa.on.iter().any(|x| adjacent(scene, x.0, j)) {
+                continue;
+            }
+            let overlap_depth =
+                jb.depth[0] <= sa.bounds.depth[1] && sa.bounds.depth[0] <= jb.depth[1];
+            if jb.meets_image(&sa.bounds) && overlap_depth {
+                stats.penetration_systems += 1;
+                jobs.push(Job::Penetration(a, j));
+            }
+        }
+    }
+    // The fold boxes of each silhouette arc, once.
+    let covers: Vec<Vec<(DyadicBoxN, DyadicBoxN)>> = segments
+        .par_iter()
+        .map(|s| {
+            if opts.curve.past_deadline() {
+                Vec::new()
+            } else {
+                fold_cover(scene, s)
+            }
+        })
+        .collect();
+    let results: Vec<(Job, SystemRoots, Vec<DyadicBoxN>, bool)> = jobs
+        .par_iter()
+        .map(|job| {
+            if opts.curve.past_deadline() {
+                // Not solved: every stretch the system covers is unresolved.
+                let domain: Vec<[f64; 2]> = job_domain(segments, *job)
+                    .iter()
+                    .map(|d| [d.0.to_f64(), d.1.to_f64()])
+                    .collect();
+                let r = SystemRoots {
+                    unresolved: vec![domain],
+                    ..SystemRoots::default()
+                };
+                return (*job, r, Vec::new(), true);
+            }
+            let (eqs, domain, exclude) = match *job {
+                Job::Pair(a, b) => {
+                    let (eqs, domain) = crossing_system(&segments[a], &segments[b]);
+                    let mut exclude = arc_fold_exclusion(&segments[a], &segments[b], &covers, a, b);
+                    for va in &segments[a].vertices {
+                        for vb in &segments[b].vertices {
+                            if va.key.matches(&vb.key) {
+                                if let Some(x) =
+                                    vertex_exclusion(scene, &segments[a], &segments[b], va, vb)
+                                {
+                                    exclude.push(x);
+                                }
+                            }
+                        }
+                    }
+                    (eqs, domain, exclude)
+                }
+                Job::SelfCrossing(a) => {
+                    let (eqs, domain) = self_crossing_system(&segments[a]);
+                    (eqs, domain, Vec::new())
+                }
+                Job::Penetration(a, j) => {
+                    let (eqs, domain) = penetration_system(&segments[a], &scene.images[j]);
+                    (eqs, domain, Vec::new())
+                }
+            };
+            let r = solve_system_excluding(&eqs, &[], &domain, &exclude, &opts.crossing);
+            (*job, r, exclude, false)
+        })
+        .collect();
+    let mut intersecting = BTreeSet::new();
+    for (job, r, exclude, timed_out) in &results {
+        stats.boxes += r.boxes;
+        if let Job::Penetration(a, j) = *job {
+            for &(p, _, _) in segments[a].on.iter().filter(|_| !r.roots.is_empty()) {
+                intersecting.insert([p.min(j), p.max(j)]);
+            }
+        }
+        stats.excluded_vertices += exclude.len();
+        // Which variables are each segment's parameter, and what an unresolved box means.
+        let (targets, why): (Vec<(usize, usize)>, String) = match *job {
+            Job::Pair(a, b) => {
+                let na = segments[a].domain.len();
+                (
+                    vec![(a, segments[a].axis), (b, na + segments[b].axis)],
+                    format!(
+                        "where it crosses a line of patch {} (or patch {}) is not isolated",
+                        segments[b].patch, segments[a].patch
+                    ),
+                )
+            }
+            Job::SelfCrossing(a) => (
+                vec![(a, 0), (a, 1)],
+                "where its image crosses itself is not isolated".into(),
+            ),
+            Job::Penetration(a, j) => (
+                vec![(a, segments[a].axis)],
+                format!("where it may pass through patch {j} is not isolated"),
+            ),
+        };
+        // A crossing cuts a segment only if the other segment can change its QI there.
+        let counts = |bx: &[[f64; 2]], s: usize| -> bool {
+            match *job {
+                Job::Pair(a, b) => {
+                    let na = segments[a].domain.len();
+                    let (other, k) = if s == a {
+                        (b, na + segments[b].axis)
+                    } else {
+                        (a, segments[a].axis)
+                    };
+                    roles.outline_at(other, bx[k])
+                }
+                _ => true,
+            }
+        };
+        for root in &r.roots {
+            for &(s, k) in &targets {
+                if counts(&root.enclosure, s) {
+                    events[s].push(Event::cut(root.enclosure[k]));
+                }
+            }
+        }
+        let why = if *timed_out {
+            TIME_LIMIT_REASON.to_string()
+        } else {
+            why
+        };
+        for bx in &r.unresolved {
+            for &(s, k) in &targets {
+                if counts(bx, s) {
+                    events[s].push(Event::unresolved(bx[k], why.clone()));
+                }
+            }
+        }
+    }
+
+    Crossings {
+        events,
+        intersecting,
+    }
+}
+
+/// A system to solve.
+#[derive(Clone, Copy, Debug)]
+enum Job {
+    /// Two segments' image crossings.
+    Pair(usize, usize),
+    /// A side's image crossing itself.
+    SelfCrossing(usize),
+    /// A segment passing through a patch.
+    Penetration(usize, usize),
+}
+
+/// The variables' box of a job's system.
+fn job_domain(segments: &[Segment], job: Job) -> DyadicBoxN {
+    let unit = (Dyadic::ZERO, Dyadic::ONE);
+    match job {
+        Job::Pair(a, b) => segments[a]
+            .domain
+            .iter()
+            .chain(&segments[b].domain)
+            .copied()
+            .collect(),
+        Job::SelfCrossing(a) => segments[a]
+            .domain
+            .iter()
+            .chain(&segments[a].domain)
+            .copied()
+            .collect(),
+        Job::Penetration(a, _) => segments[a]
+            .domain
+            .iter()
+            .copied()
+            .chain([unit, unit])
+            .collect(),
+    }
+}
+
+/// A cut or an unresolved stretch on a segment's parameter.
+#[derive(Clone, Debug)]
+pub(super) struct Event {
+    pub(super) at: [f64; 2],
+    pub(super) unresolved: Option<String>,
+}
+
+impl Event {
+    pub(super) fn cut(at: [f64; 2]) -> Event {
+        Event {
+            at,
+            unresolved: None,
+        }
+    }
+    pub(super) fn unresolved(at: [f64; 2], why: String) -> Event {
+        Event {
+            at,
+            unresolved: Some(why),
+        }
+    }
+}
+
+/// Whether two patches share a corner or an edge.
+fn adjacent(scene: &Scene, a: usize, b: usize) -> bool {
+    let (ca, cb) = (&scene.adjacency.corners[a], &scene.adjacency.corners[b]);
+    ca.iter().any(|x| cb.contains(x))
+}
