@@ -14,7 +14,11 @@ use crate::analysis::contour::silhouette::silhouette_function;
 
 use crate::analysis::view::View;
 use crate::bernstein::Bernstein;
-use crate::number::{Interval, Number, Precision, Rational, Sign};
+use crate::number::{Interval, Precision, Rational, Sign};
+use crate::solver::dyadic::{Dyadic, DyadicBox};
+use crate::solver::plane_curve::box_signs::strict_sign;
+use crate::solver::precision::Policy;
+use crate::solver::univariate::PointSign;
 use crate::surface::RationalPatch;
 
 /// The self-visible type of a patch.
@@ -37,23 +41,27 @@ pub enum Facing {
 /// The deepest subdivision when deciding a type.
 const MAX_DEPTH: u32 = 10;
 
-/// The self-visible type of a patch for a view.
+/// The self-visible type of a patch for a view, every sign decided through the caller's
+/// precision ladder (its counts in `policy`).
 ///
 /// # Examples
 /// ```
 /// use limn::analysis::visibility::facing::{facing, Facing};
 /// use limn::analysis::view::View;
 /// use limn::number::Rational;
+/// use limn::solver::{Escalations, Ladder, Policy};
 /// use limn::testing::shapes;
 /// let torus = shapes::torus(&Rational::from(2), &Rational::from(1));
 /// let tilted = View::Direction([1, 2, -20].map(Rational::from));
+/// let mut counts = Escalations::default();
+/// let mut policy = Policy::new(&Ladder::default(), &mut counts);
 /// // Seen from nearly above, the top patches face the viewer and the bottom ones away.
-/// let kinds: Vec<Facing> = torus.iter().map(|p| facing(p, &tilted)).collect();
+/// let kinds: Vec<Facing> = torus.iter().map(|p| facing(p, &tilted, &mut policy)).collect();
 /// assert!(kinds.contains(&Facing::Front) && kinds.contains(&Facing::Back));
 /// ```
-pub fn facing(patch: &RationalPatch, view: &View) -> Facing {
+pub fn facing(patch: &RationalPatch, view: &View, policy: &mut Policy) -> Facing {
     let g = silhouette_function(patch, view);
-    facing_of_function(&g, front_sign(view))
+    facing_of_function(&g, front_sign(view), policy)
 }
 
 /// The sign of the silhouette function on the front-facing side of a view: negative for a
@@ -66,7 +74,12 @@ pub fn front_sign(view: &View) -> Sign {
 }
 
 /// The type from the silhouette function and the sign of its front-facing side.
-pub fn facing_of_function(g: &Bernstein<Rational>, front: Sign) -> Facing {
+///
+/// A box's coefficients are taken in f64 intervals carried down the subdivision; where they
+/// show one strict sign and some undecided coefficients, the box's polynomial is recomputed
+/// from the exact `g` up the ladder ([`crate::solver::plane_curve`]'s box signs); the value at
+/// a box centre is decided the same way, f64 first.
+pub fn facing_of_function(g: &Bernstein<Rational>, front: Sign, policy: &mut Policy) -> Facing {
     if g.is_zero() {
         return Facing::EdgeOn;
     }
@@ -77,7 +90,7 @@ pub fn facing_of_function(g: &Bernstein<Rational>, front: Sign) -> Facing {
             Facing::Back
         }
     };
-    // Points of each strict sign, found exactly at box corners and centres.
+    // Points of each strict sign, found at box centres.
     let mut seen = [false, false];
     let note = |seen: &mut [bool; 2], s: Sign| match s {
         Sign::Positive => seen[0] = true,
@@ -87,9 +100,9 @@ pub fn facing_of_function(g: &Bernstein<Rational>, front: Sign) -> Facing {
     let gi: Bernstein<Interval> = g.convert(Precision::F64);
     let mut common: Option<Sign> = None;
     let mut mixed = false;
-    let mut stack = vec![(gi, [Rational::new(), Rational::new()], 0u32)];
-    while let Some((p, corner, depth)) = stack.pop() {
-        let s = p.range_sign();
+    let mut stack = vec![(gi, DyadicBox::UNIT, 0u32)];
+    while let Some((p, cell, depth)) = stack.pop() {
+        let (s, _) = strict_sign(&p, g, cell, Some(policy.ladder), policy.counts);
         if matches!(s, Sign::Positive | Sign::Negative) {
             note(&mut seen, s);
             match common {
@@ -99,14 +112,18 @@ pub fn facing_of_function(g: &Bernstein<Rational>, front: Sign) -> Facing {
             }
             continue;
         }
-        // The exact value at the box centre.
-        let mut half = Rational::from(1);
-        half >>= depth + 1;
-        let centre = [
-            Rational::from(&corner[0] + &half),
-            Rational::from(&corner[1] + &half),
-        ];
-        note(&mut seen, g.eval(&centre).sign());
+        let halves = [0, 1].map(|a| cell.lo[a].midpoint(cell.hi[a]));
+        let (Some(cu), Some(cv)) = (halves[0], halves[1]) else {
+            mixed = true;
+            continue;
+        };
+        let centre = PointSign {
+            p: g,
+            t: vec![cu, cv],
+        };
+        if let (Some(s), _) = policy.ladder.decide(&centre, policy.counts) {
+            note(&mut seen, s);
+        }
         if seen[0] && seen[1] {
             return Facing::Partial;
         }
@@ -118,14 +135,20 @@ pub fn facing_of_function(g: &Bernstein<Rational>, front: Sign) -> Facing {
         for (q, du) in [(l, false), (r, true)] {
             let (b, t) = q.subdivide_half(1);
             for (c, dv) in [(b, false), (t, true)] {
-                let mut k = corner.clone();
-                if du {
-                    k[0] += &half;
-                }
-                if dv {
-                    k[1] += &half;
-                }
-                stack.push((c, k, depth + 1));
+                let pick = |a: usize, upper: bool, mid: Dyadic| {
+                    if upper {
+                        (mid, cell.hi[a])
+                    } else {
+                        (cell.lo[a], mid)
+                    }
+                };
+                let (u0, u1) = pick(0, du, cu);
+                let (v0, v1) = pick(1, dv, cv);
+                let child = DyadicBox {
+                    lo: [u0, v0],
+                    hi: [u1, v1],
+                };
+                stack.push((c, child, depth + 1));
             }
         }
     }
@@ -141,7 +164,12 @@ pub fn facing_of_function(g: &Bernstein<Rational>, front: Sign) -> Facing {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::solver::precision::{Escalations, Ladder};
     use crate::testing::shapes;
+
+    fn facing(patch: &RationalPatch, view: &View) -> Facing {
+        super::facing(patch, view, &mut Policy::new(&Ladder::default(), &mut Escalations::default()))
+    }
 
     #[test]
     fn torus_types_from_above_and_tilted() {
@@ -193,5 +221,33 @@ mod tests {
         let patch = RationalPatch::polynomial([2, 2], pts).unwrap();
         let view = View::Direction([1, 0, 0].map(Rational::from));
         assert_eq!(facing(&patch, &view), Facing::Undecided);
+    }
+
+    #[test]
+    fn a_sign_below_f64_is_decided_up_the_ladder_and_counted() {
+        // A unit square in z = 0 seen along (0, 0, −10^-400): g = n·V = −10^-400 everywhere,
+        // which no f64 interval separates from 0; MPFR's exponent range does.
+        let p = |x: i64, y: i64| [Rational::from(x), Rational::from(y), Rational::new()];
+        let sq =
+            RationalPatch::polynomial([1, 1], vec![p(0, 0), p(0, 1), p(1, 0), p(1, 1)]).unwrap();
+        let mut tiny = Rational::from(1);
+        for _ in 0..400 {
+            tiny /= 10;
+        }
+        let view = View::Direction([Rational::new(), Rational::new(), -tiny]);
+        let mut counts = Escalations::default();
+        let ladder = Ladder::default();
+        let f = super::facing(&sq, &view, &mut Policy::new(&ladder, &mut counts));
+        assert_eq!(f, Facing::Front);
+        assert!(counts.mpfr.values().sum::<u64>() >= 1, "{counts:?}");
+        // Without MPFR and exact levels, nothing is decided, and nothing is guessed.
+        let f64_only = Ladder {
+            mpfr_start: 64,
+            mpfr_cap: 0,
+            exact: false,
+        };
+        let mut counts = Escalations::default();
+        let f = super::facing(&sq, &view, &mut Policy::new(&f64_only, &mut counts));
+        assert_eq!(f, Facing::Undecided, "{counts:?}");
     }
 }

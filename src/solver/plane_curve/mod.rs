@@ -10,7 +10,7 @@
 //! (near a singular point, where both partial derivatives vanish on the curve) is reported
 //! with its box, never guessed.
 
-mod box_signs;
+pub(crate) mod box_signs;
 pub mod critical_points;
 mod graph_boxes;
 mod segments;

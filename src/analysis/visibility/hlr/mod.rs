@@ -48,11 +48,12 @@ use roles::line_roles;
 use crate::analysis::contour::drawing::refined_for;
 use crate::analysis::contour::silhouette::silhouette_curves;
 use crate::analysis::view::View;
-use crate::analysis::visibility::facing::facing;
+use crate::analysis::visibility::facing::{facing, Facing};
 use crate::analysis::visibility::ray::RayOptions;
 use crate::analysis::visibility::scene::Scene;
 use crate::error::Error;
 use crate::model::{Model, WeldTolerance};
+use crate::solver::precision::{Escalations, Policy};
 use crate::solver::system::SystemOptions;
 use crate::solver::CurveOptions;
 use rayon::prelude::*;
@@ -167,18 +168,27 @@ pub fn hidden_lines(model: &Model, view: &View, opts: &HlrOptions) -> Result<Hid
         opts,
         &mut stats,
     );
-    let facing = model
+    let typed: Vec<(Facing, Escalations)> = model
         .patches
         .par_iter()
-        .map(|p| facing(&p.surface, view))
+        .map(|p| {
+            let mut counts = Escalations::default();
+            let f = facing(&p.surface, view, &mut Policy::new(&opts.curve.ladder, &mut counts));
+            (f, counts)
+        })
         .collect();
+    let mut facing_types = Vec::with_capacity(typed.len());
+    for (f, counts) in typed {
+        facing_types.push(f);
+        stats.escalations.merge(&counts);
+    }
     let mut assumptions = vec![ADJACENT_ASSUMPTION.to_string()];
     if let WeldTolerance::Absolute(d) = weld {
         assumptions.push(weld_assumption(d));
     }
     Ok(HiddenLines {
         pieces,
-        facing,
+        facing: facing_types,
         stats,
         assumptions,
         intersecting_patches: found.intersecting.into_iter().collect(),

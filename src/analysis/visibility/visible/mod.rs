@@ -43,6 +43,7 @@ use crate::error::Error;
 use crate::model::{Model, WeldTolerance};
 use crate::number::{Precision, Rational};
 use crate::solver::plane_curve::TIME_LIMIT_REASON;
+use crate::solver::precision::{Escalations, Policy};
 use crate::solver::CurveOptions;
 use crate::surface::DrawPatch;
 use cells::{patch_leaves, Context, Leaf, LeafIndex};
@@ -202,6 +203,9 @@ pub struct VisibleStats {
     pub trim_loops: usize,
     /// See `trim_loops`.
     pub closed_trim_loops: usize,
+    /// The precision that settled each sign decided through the ladder (the patches' types;
+    /// the hidden-line drawing's, with trimming curves).
+    pub escalations: Escalations,
 }
 
 /// The visible regions of a model in a view.
@@ -294,6 +298,7 @@ pub fn visible_regions(
         stats.quiet_regions += s.quiet_regions;
         stats.ray_tests += s.ray_tests;
         stats.refused_ray_tests += s.refused_ray_tests;
+        stats.escalations.merge(&s.escalations);
         for k in 0..3 {
             sums[k][0] += a[k][0];
             sums[k][1] += a[k][1];
@@ -534,7 +539,11 @@ fn patch_region(
     let domain_fraction = [dom[0], (dom[0] + dom[2]).min(1.0)];
     let region = PatchRegion {
         patch: p,
-        facing: facing(&model.patches[p].surface, view),
+        facing: facing(
+            &model.patches[p].surface,
+            view,
+            &mut Policy::new(&opts.curve.ladder, &mut stats.escalations),
+        ),
         certified: counts[2] == 0,
         domain_fraction,
         area_fraction: fraction_bounds(sums),
