@@ -44,6 +44,15 @@ impl MpInterval {
         self.lo <= *q && *q <= self.hi
     }
 
+    /// The smallest f64 interval that contains this one (bounds rounded outward; a bound past
+    /// f64's range becomes infinite, one below its least subnormal the nearest f64 outward).
+    pub fn to_interval(&self) -> super::Interval {
+        super::Interval::new(
+            self.lo.to_f64_round(Round::Down),
+            self.hi.to_f64_round(Round::Up),
+        )
+    }
+
     fn prec_with(&self, rhs: &MpInterval) -> u32 {
         self.lo.prec().max(rhs.lo.prec())
     }

@@ -167,3 +167,44 @@ proptest! {
         check(&us, &vs, m);
     }
 }
+
+#[test]
+fn refinement_climbs_the_callers_ladder_and_counts_it() {
+    // Roots (1/3, 2/7) and (3/5, 2/7), refined to 1e-14 on small boxes restricted from the exact
+    // input: exactly with the default ladder, in MPFR without its exact level; both proven,
+    // and each settled test counted at its level.
+    let [f, g] = mixed(
+        &product(0, &[q(1, 3), q(3, 5)]),
+        &product(1, &[q(2, 7)]),
+        [2, 1, -1, 1],
+    );
+    let mut opts = SystemOptions::default();
+    opts.refine_width = 1e-14;
+    let exact = solve_system(&[f.clone(), g.clone()], &[], &unit(), &opts);
+    opts.ladder = limn::solver::Ladder {
+        exact: false,
+        ..limn::solver::Ladder::default()
+    };
+    let mpfr = solve_system(&[f, g], &[], &unit(), &opts);
+    for (r, name) in [(&exact, "exact"), (&mpfr, "mpfr")] {
+        assert_eq!(r.roots.len(), 2, "{name}: {r:?}");
+        for root in &r.roots {
+            let (u, v) = (root.enclosure[0], root.enclosure[1]);
+            let on = |x: [f64; 2], t: f64| x[0] <= t && t <= x[1];
+            assert!(
+                on(v, 2.0 / 7.0) && (on(u, 1.0 / 3.0) || on(u, 0.6)),
+                "{name}: {root:?}"
+            );
+        }
+    }
+    assert!(
+        exact.escalations.exact > 0 && exact.escalations.mpfr.is_empty(),
+        "{:?}",
+        exact.escalations
+    );
+    assert!(
+        mpfr.escalations.exact == 0 && !mpfr.escalations.mpfr.is_empty(),
+        "{:?}",
+        mpfr.escalations
+    );
+}

@@ -168,7 +168,11 @@ mod tests {
     use crate::testing::shapes;
 
     fn facing(patch: &RationalPatch, view: &View) -> Facing {
-        super::facing(patch, view, &mut Policy::new(&Ladder::default(), &mut Escalations::default()))
+        super::facing(
+            patch,
+            view,
+            &mut Policy::new(&Ladder::default(), &mut Escalations::default()),
+        )
     }
 
     #[test]

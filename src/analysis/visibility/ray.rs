@@ -75,6 +75,7 @@ impl Default for RayOptions {
                 max_depth: 24,
                 max_boxes: 4_000,
                 refine_width: 1e-12,
+                ..SystemOptions::default()
             },
         }
     }

@@ -10,6 +10,7 @@
 use crate::bernstein::Bernstein;
 use crate::number::{Interval, Precision, Rational};
 use crate::solver::dyadic::{Dyadic, DyadicBox};
+use crate::solver::precision::{Escalations, Ladder};
 use crate::solver::system::{simplest_rational, solve_system, SystemOptions};
 
 /// An isolated critical point of g, with what is known of g there.
@@ -96,13 +97,20 @@ fn clusters(boxes: &[DyadicBox]) -> Vec<DyadicBox> {
 
 /// The critical points of g inside the given boxes (each found once), classified. The boxes
 /// are searched by clusters (the bounding box of each group of touching boxes), at most
-/// `MAX_CLUSTERS` (32) of them, each within the system solver's budget.
-pub fn critical_points(g: &Bernstein<Rational>, boxes: &[DyadicBox]) -> Vec<CriticalPoint> {
+/// `MAX_CLUSTERS` (32) of them, each within the system solver's budget, its refinement up
+/// `ladder` (counted into `counts`).
+pub fn critical_points(
+    g: &Bernstein<Rational>,
+    boxes: &[DyadicBox],
+    ladder: &Ladder,
+    counts: &mut Escalations,
+) -> Vec<CriticalPoint> {
     let (gu, gv) = (g.deriv(0), g.deriv(1));
     let opts = SystemOptions {
         max_depth: 12,
         max_boxes: 500,
         refine_width: 1e-13,
+        ladder: *ladder,
     };
     let mut out: Vec<CriticalPoint> = Vec::new();
     for b in clusters(boxes).iter().take(MAX_CLUSTERS) {
@@ -113,6 +121,7 @@ pub fn critical_points(g: &Bernstein<Rational>, boxes: &[DyadicBox]) -> Vec<Crit
             &domain,
             &opts,
         );
+        counts.merge(&roots.escalations);
         for r in roots.roots {
             let e = [
                 [r.enclosure[0][0], r.enclosure[1][0]],

@@ -253,7 +253,7 @@ pub fn solve_curve_cut(
     // candidates for singular points of the curve) and say what they are.
     if !out.unresolved.is_empty() && !opts.past_deadline() {
         let boxes: Vec<DyadicBox> = out.unresolved.iter().map(|u| u.cell).collect();
-        out.critical = critical_points(g, &boxes);
+        out.critical = critical_points(g, &boxes, &opts.ladder, &mut stats);
         for u in &mut out.unresolved {
             if let Some(cp) = out.critical.iter().find(|cp| cp.in_box(&u.cell)) {
                 u.reason = cp.reason(&u.cell);

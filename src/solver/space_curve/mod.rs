@@ -89,6 +89,7 @@ impl Default for SpaceCurveOptions {
                 max_depth: 5,
                 max_boxes: 64,
                 refine_width: 1e-5,
+                ..SystemOptions::default()
             },
             tolerance: None,
             max_chord: None,

@@ -177,6 +177,7 @@ pub(super) fn crossings(
     let mut intersecting = BTreeSet::new();
     for (job, r, exclude, timed_out) in &results {
         stats.boxes += r.boxes;
+        stats.escalations.merge(&r.escalations);
         if let Job::Penetration(a, j) = *job {
             for &(p, _, _) in segments[a].on.iter().filter(|_| !r.roots.is_empty()) {
                 intersecting.insert([p.min(j), p.max(j)]);

@@ -104,6 +104,7 @@ impl Default for HlrOptions {
                 max_depth: 24,
                 max_boxes: 3_000,
                 refine_width: 1e-12,
+                ..SystemOptions::default()
             },
             draw_steps: 8,
             tol: None,
@@ -173,7 +174,11 @@ pub fn hidden_lines(model: &Model, view: &View, opts: &HlrOptions) -> Result<Hid
         .par_iter()
         .map(|p| {
             let mut counts = Escalations::default();
-            let f = facing(&p.surface, view, &mut Policy::new(&opts.curve.ladder, &mut counts));
+            let f = facing(
+                &p.surface,
+                view,
+                &mut Policy::new(&opts.curve.ladder, &mut counts),
+            );
             (f, counts)
         })
         .collect();
