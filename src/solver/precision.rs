@@ -2,7 +2,8 @@
 //! the exact input in MPFR intervals at doubling precision up to a cap, then in exact
 //! rationals. Written once; every analysis decides its signs through it.
 
-use crate::number::{Certified, Interval, MpInterval, Precision, Rational};
+use crate::bernstein::Bernstein;
+use crate::number::{Certified, Interval, MpInterval, Number, Precision, Rational};
 use std::collections::BTreeMap;
 
 /// A level of the precision ladder.
@@ -109,6 +110,55 @@ impl<'a> Policy<'a> {
 }
 
 impl Ladder {
+    /// The ladder's tightest level: exact rationals if it has them, else its highest MPFR
+    /// precision. Where the answer is an enclosure rather than a sign (polynomials restricted
+    /// to a small box, then enclosed in f64 intervals), that level alone is used: a lower
+    /// level's enclosure contains it, so it can settle nothing the tightest cannot.
+    pub fn tightest(&self) -> Level {
+        if self.exact {
+            return Level::Exact;
+        }
+        let mut p = self.mpfr_start.max(54);
+        while p.checked_mul(2).is_some_and(|next| next <= self.mpfr_cap) {
+            p *= 2;
+        }
+        Level::Mpfr(p)
+    }
+
+    /// The exact polynomials restricted to the box `[lo, hi]` at the tightest level
+    /// ([`Ladder::tightest`]), enclosed in f64 intervals, with the level used.
+    pub fn restricted_enclosures(
+        &self,
+        exact: &[Bernstein<Rational>],
+        lo: &[Rational],
+        hi: &[Rational],
+    ) -> (Vec<Bernstein<Interval>>, Level) {
+        let level = self.tightest();
+        let polys = match level {
+            Level::Mpfr(p) => {
+                let prec = Precision(p);
+                let to = |x: &[Rational]| -> Vec<MpInterval> {
+                    x.iter()
+                        .map(|v| MpInterval::from_rational(v, prec))
+                        .collect()
+                };
+                let (lm, hm) = (to(lo), to(hi));
+                exact
+                    .iter()
+                    .map(|e| {
+                        let m: Bernstein<MpInterval> = e.convert(prec);
+                        m.restrict_box(&lm, &hm).map(MpInterval::to_interval)
+                    })
+                    .collect()
+            }
+            _ => exact
+                .iter()
+                .map(|e| e.restrict_box_rational(lo, hi).convert(Precision::F64))
+                .collect(),
+        };
+        (polys, level)
+    }
+
     /// Answers the question, starting with f64 intervals. Returns the answer and the level
     /// that settled it (`None` twice if no level did), and records it in `stats`.
     pub fn decide<Q: Question>(
@@ -211,5 +261,38 @@ mod tests {
         };
         assert_eq!(no_exact.decide(&Tiny(None), &mut stats), (None, None));
         assert_eq!(stats.undecided, 1);
+    }
+
+    #[test]
+    fn enclosures_at_the_tightest_level_contain_the_exact_values() {
+        assert_eq!(Ladder::default().tightest(), Level::Exact);
+        let no_exact = Ladder {
+            exact: false,
+            ..Ladder::default()
+        };
+        assert_eq!(no_exact.tightest(), Level::Mpfr(848));
+        // p(u, v) = (1/3)(1 − u)(1 − v) + (2/7) u v + ..., restricted to a small box.
+        let q = |a: i64, b: i64| Rational::from((a, b));
+        let p = Bernstein::new(&[1, 1], vec![q(1, 3), q(-5, 11), q(2, 9), q(2, 7)]).unwrap();
+        let lo = [q(1, 1024), q(3, 8)];
+        let hi = [q(3, 1024), q(25, 64)];
+        let (exact, le) =
+            Ladder::default().restricted_enclosures(std::slice::from_ref(&p), &lo, &hi);
+        let (mpfr, lm) = no_exact.restricted_enclosures(std::slice::from_ref(&p), &lo, &hi);
+        assert_eq!((le, lm), (Level::Exact, Level::Mpfr(848)));
+        let truth = p.restrict_box_rational(&lo, &hi);
+        for ((t, e), m) in truth
+            .coeffs()
+            .iter()
+            .zip(exact[0].coeffs())
+            .zip(mpfr[0].coeffs())
+        {
+            assert!(
+                e.contains_rational(t) && m.contains_rational(t),
+                "{t} {e:?} {m:?}"
+            );
+            // The exact level's enclosure is the tightest f64 one: inside the MPFR one.
+            assert!(m.lo() <= e.lo() && e.hi() <= m.hi());
+        }
     }
 }

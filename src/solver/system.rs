@@ -16,9 +16,9 @@
 //! later systems (bitangents, flecnodal points) use the same code.
 
 use crate::bernstein::Bernstein;
-use crate::number::{Interval, MpInterval, Number, Precision, Rational};
+use crate::number::{Interval, Number, Precision, Rational};
 use crate::solver::dyadic::Dyadic;
-use crate::solver::precision::{Escalations, Ladder, Level};
+use crate::solver::precision::{Escalations, Ladder};
 
 /// Budgets of the system solver.
 #[derive(Clone, Debug)]
@@ -32,9 +32,8 @@ pub struct SystemOptions {
     /// test, else Krawczyk iteration and bisection); where refinement stalls the enclosure
     /// stays wider, still proven.
     pub refine_width: f64,
-    /// The precisions in which the exact polynomials are restricted to the small boxes of
-    /// the refinement: exact rationals if the ladder has them, else its MPFR precisions
-    /// (see `Tight` in this module's source).
+    /// The precision in which the exact polynomials are restricted to the small boxes of the
+    /// refinement: its tightest level ([`Ladder::tightest`]).
     pub ladder: Ladder,
 }
 
@@ -297,15 +296,11 @@ fn test_box(domain_polys: &[Bernstein<Interval>], lo: &[f64], hi: &[f64]) -> Opt
 }
 
 /// The exact polynomials of a system, restricted to the small boxes of the refinement from
-/// the exact input, then enclosed in f64 intervals for the test.
-///
-/// The answer here is an enclosure, not a sign, so the ladder is used the other way round:
-/// with its exact level, the restriction is exact, which gives the tightest f64 enclosure of
-/// every coefficient (an MPFR enclosure contains it, so no MPFR level can pass a test the
-/// exact one fails) and was measured faster too: on `occ22470.igs`, whose 766 such tests MPFR
-/// at 106 bits settles every one, the hidden-line drawing takes 9.1 s with MPFR first
-/// against 8.5 s exact (one thread). Without the exact level, the MPFR precisions of the
-/// ladder are climbed.
+/// the exact input at the ladder's tightest level ([`Ladder::restricted_enclosures`]), then
+/// enclosed in f64 intervals for the test. With the default ladder that is exact rationals,
+/// also measured faster than MPFR first: on `occ22470.igs`, whose 766 such tests MPFR at
+/// 106 bits settles every one, the hidden-line drawing takes 9.1 s with MPFR first against
+/// 8.5 s exact (one thread).
 struct Tight<'a> {
     exact: &'a [Bernstein<Rational>],
     ladder: &'a Ladder,
@@ -313,52 +308,22 @@ struct Tight<'a> {
 }
 
 impl Tight<'_> {
-    /// The polynomials on `[lo, hi]` (f64 corners, exact dyadics) at each level in turn, until
-    /// `accept` takes one; the level that did is counted.
+    /// The polynomials on `[lo, hi]` (f64 corners, exact dyadics), if `accept` takes them
+    /// (counted at the level used).
     fn first<T>(
         &mut self,
         lo: &[f64],
         hi: &[f64],
-        mut accept: impl FnMut(&[Bernstein<Interval>]) -> Option<T>,
+        accept: impl FnOnce(&[Bernstein<Interval>]) -> Option<T>,
     ) -> Option<T> {
         let q = |x: &[f64]| -> Option<Vec<Rational>> {
             x.iter().map(|&v| Rational::from_f64(v)).collect()
         };
         let (lq, hq) = (q(lo)?, q(hi)?);
-        if self.ladder.exact {
-            let local: Vec<Bernstein<Interval>> = self
-                .exact
-                .iter()
-                .map(|e| e.restrict_box_rational(&lq, &hq).convert(Precision::F64))
-                .collect();
-            let t = accept(&local)?;
-            self.counts.record(Some(Level::Exact));
-            return Some(t);
-        }
-        let mut p = self.ladder.mpfr_start.max(54);
-        while p <= self.ladder.mpfr_cap {
-            let prec = Precision(p);
-            let to = |x: &[Rational]| -> Vec<MpInterval> {
-                x.iter()
-                    .map(|v| MpInterval::from_rational(v, prec))
-                    .collect()
-            };
-            let (lm, hm) = (to(&lq), to(&hq));
-            let local: Vec<Bernstein<Interval>> = self
-                .exact
-                .iter()
-                .map(|e| {
-                    let m: Bernstein<MpInterval> = e.convert(prec);
-                    m.restrict_box(&lm, &hm).map(MpInterval::to_interval)
-                })
-                .collect();
-            if let Some(t) = accept(&local) {
-                self.counts.record(Some(Level::Mpfr(p)));
-                return Some(t);
-            }
-            p = p.checked_mul(2)?;
-        }
-        None
+        let (local, level) = self.ladder.restricted_enclosures(self.exact, &lq, &hq);
+        let t = accept(&local)?;
+        self.counts.record(Some(level));
+        Some(t)
     }
 
     /// Krawczyk's test on `[lo, hi]`: the root's enclosure in global coordinates.

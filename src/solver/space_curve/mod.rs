@@ -32,6 +32,7 @@ pub use warp::{unwarp, unwarp_exact, unwarp_interval, warp};
 
 use crate::bernstein::Bernstein;
 use crate::number::Rational;
+use crate::solver::precision::Ladder;
 use crate::solver::space_curve::assemble::assemble;
 use crate::solver::space_curve::singular_branches::HigherPartials;
 use crate::solver::space_curve::singular_search::{singular_points_near, star_around, Leaves};
@@ -62,6 +63,9 @@ pub struct SpaceCurveOptions {
     /// The caller's own test of an arc's accuracy, in place of the comparisons with
     /// `tolerance` and `max_chord` (which must still be set, to have deviations computed).
     pub accept: Option<ArcAccept>,
+    /// The precision in which a box's polynomials are recomputed from the exact input where
+    /// their enclosures have spread: its tightest level ([`Ladder::tightest`]).
+    pub ladder: Ladder,
 }
 
 /// A test of an arc's accuracy from its two crossings' enclosures and its deviation per
@@ -95,6 +99,7 @@ impl Default for SpaceCurveOptions {
             max_chord: None,
             deadline: None,
             accept: None,
+            ladder: Ladder::default(),
         }
     }
 }

@@ -5,7 +5,6 @@ use crate::bernstein::Bernstein;
 use crate::number::{Interval, Number, Precision, Rational};
 use crate::solver::dyadic::Dyadic;
 use crate::solver::plane_curve::TIME_LIMIT_REASON;
-use crate::solver::precision::Level;
 use crate::solver::space_curve::faces::{
     face_roots, face_slice, to_global, to_global_inward, FaceRoot,
 };
@@ -474,6 +473,8 @@ pub(crate) fn subdivide(
     leaves: &mut Leaves,
 ) {
     let (n, opts) = (solver.n, solver.opts);
+    let all_exact: Vec<Bernstein<Rational>> = eqs.iter().chain(filters).cloned().collect();
+    let all_exact = &all_exact[..];
     // Each box carries the equations, then the filters.
     let mut stack = vec![Item {
         cell: vec![(Dyadic::ZERO, Dyadic::ONE); n],
@@ -540,16 +541,13 @@ pub(crate) fn subdivide(
             }
             Settled::Open(reason) => (reason, true),
         };
-        // Undecided: recompute the polynomials exactly once if the enclosures have spread.
+        // Undecided: recompute the polynomials from the exact input once, at the ladder's
+        // tightest level, if the enclosures have spread.
         if accurate_enough && !item.exact && item.depth >= 3 && slack(equations) > 1e-9 {
-            out.escalations.record(Some(Level::Exact));
             let lo: Vec<Rational> = item.cell.iter().map(|d| d.0.to_rational()).collect();
             let hi: Vec<Rational> = item.cell.iter().map(|d| d.1.to_rational()).collect();
-            let polys = eqs
-                .iter()
-                .chain(filters)
-                .map(|p| p.restrict_box_rational(&lo, &hi).convert(Precision::F64))
-                .collect();
+            let (polys, level) = opts.ladder.restricted_enclosures(all_exact, &lo, &hi);
+            out.escalations.record(Some(level));
             out.boxes -= 1;
             stack.push(Item {
                 polys,
