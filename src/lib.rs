@@ -35,6 +35,7 @@ pub mod geometry;
 pub mod io;
 pub mod model;
 pub mod number;
+pub mod reason;
 pub mod report;
 pub mod solver;
 pub mod surface;
@@ -55,6 +56,7 @@ pub use analysis::visibility::visible::{visible_regions, VisibleOptions, Visible
 pub use error::Error;
 pub use io::{read_model, read_model_bytes};
 pub use model::Model;
+pub use reason::Reason;
 
 /// The options of [`silhouette`].
 pub type SilhouetteOptions = ContourOptions;

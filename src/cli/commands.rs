@@ -14,21 +14,19 @@ use crate::analysis::visibility::hlr::{hidden_lines, HlrOptions};
 use crate::analysis::visibility::visible::{visible_regions, VisibleOptions};
 use crate::cli::args::{
     check_run_arguments, parse_view, parse_weld, CheckArgs, CurveFormat, CurveKind, CurvesArgs,
-    DemoArgs, EventsArgs, HlrArgs, HlrFormat, InfoArgs, Method, OutputFormat, RunArgs,
-    SilhouetteArgs, VisibleArgs,
+    DemoArgs, EventsArgs, HlrArgs, InfoArgs, Method, OutputFormat, RunArgs, SilhouetteArgs,
+    VisibleArgs,
 };
-use crate::cli::output::{
-    pretty_json, print_info, refuse_overwrite, render_silhouette, silhouette_text, w, write_output,
-};
+use crate::cli::output::{emit, print_info, refuse_overwrite, w};
 use crate::cli::{CliError, DEMO_DIRECTION, DEMO_HLR_DIRECTION, DEMO_TOLERANCE, EMBEDDED_TEAPOT};
 use crate::io::{read_model, read_model_bytes};
 use crate::model::{default_weld, Format, ModelInfo, WeldTolerance};
 use crate::report::bitangent::BitangentReport;
-use crate::report::events::{events_svg, EventsReport};
+use crate::report::document::{Document, WithResult};
+use crate::report::events::EventsReport;
 use crate::report::flecnodal::FlecnodalReport;
 use crate::report::hlr::HlrReport;
-use crate::report::render::CurveDocument;
-use crate::report::render::{hlr_svg, visible_svg};
+use crate::report::render::hlr_svg;
 use crate::report::silhouette::SilhouetteReport;
 use crate::report::visible::VisibleReport;
 use crate::solver::CurveOptions;
@@ -176,8 +174,8 @@ pub(crate) fn silhouette_command(
             code: 1,
         })?;
     }
-    let text = render_silhouette(format, &report, &m, &view, &s)?;
-    write_output(run.output, &text, out)
+    let doc = WithResult { report, result: &s };
+    emit(&doc, format.into(), &m, &view, run.output, out)
 }
 /// `limn curves`.
 pub(crate) fn curves_command(args: CurvesArgs, out: &mut dyn Write) -> Result<(), CliError> {
@@ -207,7 +205,8 @@ pub(crate) fn curves_command(args: CurvesArgs, out: &mut dyn Write) -> Result<()
     } = load(&model, &run)?;
     let start = std::time::Instant::now();
     let threads = pool.current_num_threads();
-    let document: Box<dyn CurveDocument> = match kind {
+    let parabolic_curves: Silhouette;
+    let document: Box<dyn Document + '_> = match kind {
         CurveKind::Flecnodal => {
             let o = FlecnodalOptions::with_tolerance(tol_abs).with_deadline(opts.deadline);
             let r = pool
@@ -225,32 +224,23 @@ pub(crate) fn curves_command(args: CurvesArgs, out: &mut dyn Write) -> Result<()
             Box::new(BitangentReport::new(&name, &r, tol_abs, ms, threads))
         }
         CurveKind::Parabolic => {
-            let s = pool
+            parabolic_curves = pool
                 .install(|| parabolic(&m, &ContourOptions::new(opts.clone(), weld, tol_abs)))
                 .map_err(|e| CliError::input(e.to_string()))?;
+            let s = &parabolic_curves;
             let ms = start.elapsed().as_secs_f64() * 1e3;
             let report = SilhouetteReport::of_curves(
                 &name,
                 "parabolic",
                 serde_json::Value::Null,
-                &s,
+                s,
                 ms,
                 threads,
             );
-            let text = render_silhouette(format, &report, &m, &projection, &s)?;
-            return write_output(run.output, &text, out);
+            Box::new(WithResult { report, result: s })
         }
     };
-    let text = match format {
-        CurveFormat::Json => document.json().map_err(|e| CliError {
-            message: format!("cannot write JSON: {e}"),
-            code: 1,
-        })?,
-        CurveFormat::Text => document.text(),
-        CurveFormat::Svg => document.svg(&m, &projection),
-        CurveFormat::Obj => document.obj(),
-    };
-    write_output(run.output, &text, out)
+    emit(&*document, format.into(), &m, &projection, run.output, out)
 }
 /// `limn events`.
 pub(crate) fn events_command(args: EventsArgs, out: &mut dyn Write) -> Result<(), CliError> {
@@ -302,18 +292,19 @@ pub(crate) fn events_command(args: EventsArgs, out: &mut dyn Write) -> Result<()
         .map_err(|e| CliError::input(e.to_string()))?;
     let ms = start.elapsed().as_secs_f64() * 1e3;
     let report = EventsReport::new(&name, &ev, ms, pool.current_num_threads());
-    let text = match format {
-        CurveFormat::Json => pretty_json(&report)?,
-        CurveFormat::Svg => events_svg(
-            &ev,
-            &format!(
-                "{name}: {} event curves on the viewing sphere (parabolic blue, flecnodal green, bitangent orange; dashed: not certified)",
-                ev.curves.len()
-            ),
-        ),
-        _ => report.text(),
+    // On the viewing sphere: no view is drawn along.
+    let doc = WithResult {
+        report,
+        result: &ev,
     };
-    write_output(run.output, &text, out)
+    emit(
+        &doc,
+        format.into(),
+        &m,
+        &View::Direction(Default::default()),
+        run.output,
+        out,
+    )
 }
 /// `limn hlr`.
 pub(crate) fn hlr_command(args: HlrArgs, out: &mut dyn Write) -> Result<(), CliError> {
@@ -346,24 +337,8 @@ pub(crate) fn hlr_command(args: HlrArgs, out: &mut dyn Write) -> Result<(), CliE
         .map_err(|e| CliError::input(format!("{name}: {e}")))?;
     let ms = start.elapsed().as_secs_f64() * 1e3;
     let report = HlrReport::new(&name, &view, &h, ms, pool.current_num_threads());
-    let text = match format {
-        HlrFormat::Text => report.text(),
-        HlrFormat::Json => pretty_json(&report)?,
-        HlrFormat::Svg => {
-            let title = format!(
-                "{}: hidden lines, {} pieces, {}",
-                name,
-                report.pieces.len(),
-                if report.certified {
-                    "visibility certified".to_string()
-                } else {
-                    format!("{} pieces unresolved (red)", report.unresolved.len())
-                }
-            );
-            hlr_svg(&m, &view, &h, &title)
-        }
-    };
-    write_output(run.output, &text, out)
+    let doc = WithResult { report, result: &h };
+    emit(&doc, format.into(), &m, &view, run.output, out)
 }
 /// `limn visible`.
 pub(crate) fn visible_command(args: VisibleArgs, out: &mut dyn Write) -> Result<(), CliError> {
@@ -404,25 +379,8 @@ pub(crate) fn visible_command(args: VisibleArgs, out: &mut dyn Write) -> Result<
         .map_err(|e| CliError::input(format!("{name}: {e}")))?;
     let ms = start.elapsed().as_secs_f64() * 1e3;
     let report = VisibleReport::new(&name, &view, &r, cells, ms, pool.current_num_threads());
-    let text = match format {
-        HlrFormat::Text => report.text(),
-        HlrFormat::Json => pretty_json(&report)?,
-        HlrFormat::Svg => {
-            let title = format!(
-                "{}: visible regions, area share [{:.4}, {:.4}]{}",
-                name,
-                r.area_fraction[0],
-                r.area_fraction[1],
-                if report.certified {
-                    ""
-                } else {
-                    ", unresolved cells red"
-                }
-            );
-            visible_svg(&m, &view, &r, &title)
-        }
-    };
-    write_output(run.output, &text, out)
+    let doc = WithResult { report, result: &r };
+    emit(&doc, format.into(), &m, &view, run.output, out)
 }
 /// `limn check`.
 pub(crate) fn check_command(args: CheckArgs, out: &mut dyn Write) -> Result<(), CliError> {
@@ -532,9 +490,12 @@ pub(crate) fn demo_command(args: DemoArgs, out: &mut dyn Write) -> Result<(), Cl
                 + "\nsilhouette from ("
                 + DEMO_DIRECTION
                 + "):\n"
-                + &silhouette_text(&report)
+                + &report.text()
         }
-        _ => render_silhouette(format, &report, &m, &view, &s)?,
+        _ => {
+            let doc = WithResult { report, result: &s };
+            return emit(&doc, format.into(), &m, &view, None, out);
+        }
     };
     w(out.write_all(text.as_bytes()))
 }

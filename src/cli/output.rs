@@ -1,13 +1,11 @@
 //! Writing results: output files (never overwritten without `--force`), JSON, the text
 //! summaries, and the silhouette's drawings.
 
-use crate::analysis::contour::curves::Silhouette;
 use crate::analysis::view::View;
-use crate::cli::args::{CurveFormat, OutputFormat};
+use crate::cli::args::{CurveFormat, HlrFormat, OutputFormat};
 use crate::cli::CliError;
-use crate::model::{ModelInfo, WeldTolerance};
-use crate::report::render::{silhouette_obj, silhouette_svg};
-use crate::report::silhouette::SilhouetteReport;
+use crate::model::{Model, ModelInfo, WeldTolerance};
+use crate::report::document::{Document, Format};
 use std::io::Write;
 use std::path::PathBuf;
 
@@ -33,15 +31,6 @@ pub(crate) fn refuse_overwrite<'a>(
     }
     Ok(())
 }
-/// A report as pretty JSON with a final newline (exit code 1 if it cannot be written).
-pub(crate) fn pretty_json(report: &impl serde::Serialize) -> Result<String, CliError> {
-    serde_json::to_string_pretty(report)
-        .map(|t| t + "\n")
-        .map_err(|e| CliError {
-            message: e.to_string(),
-            code: 1,
-        })
-}
 pub(crate) fn write_output(
     output: Option<PathBuf>,
     text: &str,
@@ -55,129 +44,48 @@ pub(crate) fn write_output(
         None => w(out.write_all(text.as_bytes())),
     }
 }
-pub(crate) fn render_silhouette(
-    format: CurveFormat,
-    report: &SilhouetteReport,
-    m: &crate::model::Model,
+/// Writes a report in the format asked, to the output file or `out` (exit code 1 if it
+/// cannot be serialised or written; 2 if the command does not write that format).
+pub(crate) fn emit(
+    doc: &dyn Document,
+    format: Format,
+    model: &Model,
     view: &View,
-    s: &Silhouette,
-) -> Result<String, CliError> {
-    Ok(match format {
-        CurveFormat::Json => pretty_json(report)?,
-        CurveFormat::Svg => {
-            let title = format!(
-                "{}: {} {} curves ({}), {} unresolved regions",
-                report.model,
-                report.curves.len(),
-                report.kind,
-                if report.certified {
-                    "certified"
-                } else if report.topology_certified {
-                    "topology certified"
-                } else {
-                    "topology NOT fully certified"
-                },
-                report.unresolved.len()
-            );
-            silhouette_svg(m, view, s, &title)
-        }
-        CurveFormat::Text => silhouette_text(report),
-        CurveFormat::Obj => silhouette_obj(s, &report.model),
-    })
+    output: Option<PathBuf>,
+    out: &mut dyn Write,
+) -> Result<(), CliError> {
+    let text = doc
+        .render(format, model, view)
+        .ok_or_else(|| {
+            CliError::input(format!(
+                "--format: {} is not written by this command",
+                format!("{format:?}").to_lowercase()
+            ))
+        })?
+        .map_err(|e| CliError {
+            message: format!("cannot write JSON: {e}"),
+            code: 1,
+        })?;
+    write_output(output, &text, out)
 }
-pub(crate) fn silhouette_text(r: &SilhouetteReport) -> String {
-    let mut t = String::new();
-    let closed = r.curves.iter().filter(|c| c.closed).count();
-    t += &format!("model: {}\n", r.model);
-    if r.method != "certified" {
-        t += &format!(
-            "method: {} (uncertified float baseline of paper 002: nothing is proven)\n",
-            r.method
-        );
-    }
-    if r.view.is_null() {
-        t += &format!("kind: {}\n", r.kind);
-    } else {
-        t += &format!("view: {}\n", r.view);
-    }
-    t += &format!(
-        "curves: {} ({} closed); topology {}\n",
-        r.curves.len(),
-        closed,
-        if r.topology_certified {
-            "certified"
-        } else {
-            "NOT fully certified (see unresolved / unjoined)"
-        }
-    );
-    if r.method == "certified" {
-        let worst = r
-            .curves
-            .iter()
-            .filter_map(|c| c.error_bound)
-            .fold(0.0f64, f64::max);
-        match r.tolerance {
-            Some(tol) if r.certified => t += &format!("accuracy: certified, every segment within {worst:.3e} of the true curve (tolerance {tol:.3e})\n"),
-            Some(tol) => t += &format!("accuracy: tolerance {tol:.3e}; not certified for every curve (see the curves)\n"),
-            None => t += "accuracy: not bounded (no tolerance asked)\n",
+impl From<CurveFormat> for Format {
+    fn from(f: CurveFormat) -> Format {
+        match f {
+            CurveFormat::Text => Format::Text,
+            CurveFormat::Json => Format::Json,
+            CurveFormat::Svg => Format::Svg,
+            CurveFormat::Obj => Format::Obj,
         }
     }
-    for (i, c) in r.curves.iter().enumerate() {
-        t += &format!(
-            "  curve {i}: {} points, patches {:?}, {}{}\n",
-            c.points.len(),
-            c.patches,
-            if c.closed { "closed" } else { "open" },
-            if c.certified_topology {
-                ""
-            } else {
-                ", topology not certified"
-            }
-        );
+}
+impl From<HlrFormat> for Format {
+    fn from(f: HlrFormat) -> Format {
+        match f {
+            HlrFormat::Text => Format::Text,
+            HlrFormat::Json => Format::Json,
+            HlrFormat::Svg => Format::Svg,
+        }
     }
-    for p in &r.singular_points {
-        t += &format!(
-            "singular point: patch {} at ({:.6}, {:.6}), {} arcs meet ({}), point [{:.6}, {:.6}, {:.6}]\n",
-            p.patch,
-            p.uv[0],
-            p.uv[1],
-            p.branches,
-            if p.exact { "exact" } else { "isolated" },
-            p.point[0],
-            p.point[1],
-            p.point[2]
-        );
-    }
-    for u in &r.unresolved {
-        t += &format!(
-            "unresolved: patch {}, {} boxes in [{:.6}, {:.6}] x [{:.6}, {:.6}]: {}\n",
-            u.patch, u.boxes, u.hull[0][0], u.hull[1][0], u.hull[0][1], u.hull[1][1], u.reason
-        );
-    }
-    for e in &r.unjoined_edges {
-        t += &format!("unjoined edge: patch {} {:?} / patch {} {:?} (no proven join: the two patches' functions are not proportional there (nor, for silhouettes, the normals parallel), and their zeros on it are not proven apart; or the curve meets a side on which it lies at a point known only within an interval)\n", e.0, e.1, e.2, e.3);
-    }
-    if !r.ending_edges.is_empty() {
-        t += &format!(
-            "edges where curves end: {} (the function jumps across them; crossings common to both patches are joined, every other is proven not to be a zero of the other patch's function)\n",
-            r.ending_edges.len()
-        );
-    }
-    let mut kinds: std::collections::BTreeMap<&str, usize> = std::collections::BTreeMap::new();
-    for d in &r.degenerate {
-        *kinds.entry(d.kind).or_default() += 1;
-    }
-    for (k, n) in kinds {
-        t += &format!("degenerate: {n} x {k}\n");
-    }
-    t += &format!(
-        "stats: {} boxes, {} sign questions escalated beyond f64, {:.1} ms on {} threads\n",
-        r.stats.boxes,
-        r.stats.escalations.escalated(),
-        r.stats.time_ms,
-        r.stats.threads
-    );
-    t
 }
 pub(crate) fn print_info(
     info: &ModelInfo,

@@ -171,12 +171,9 @@ impl BitangentReport {
             s.pairs, s.pairs_pruned, s.self_pairs_excluded, s.pairs_solved
         );
         out += &reason_lines(
-            self.unresolved.iter().map(|u| {
-                (
-                    u.reason.as_str(),
-                    format!("{}-{}", u.patches[0], u.patches[1]),
-                )
-            }),
+            self.unresolved
+                .iter()
+                .map(|u| (&u.reason, format!("{}-{}", u.patches[0], u.patches[1]))),
             "pairs",
         );
         for p in &self.plane_sets {
@@ -284,4 +281,4 @@ impl BitangentReport {
     }
 }
 
-crate::report::render::curve_document!(BitangentReport);
+crate::report::document::curve_document!(BitangentReport);

@@ -195,7 +195,7 @@ impl FlecnodalReport {
             self.model, s.curves, s.points, s.patches
         );
         out += &reason_lines(
-            self.unresolved.iter().map(|u| (u.reason.as_str(), u.patch)),
+            self.unresolved.iter().map(|u| (&u.reason, u.patch)),
             "patches",
         );
         for p in &self.singular_points {
@@ -267,4 +267,4 @@ impl FlecnodalReport {
     }
 }
 
-crate::report::render::curve_document!(FlecnodalReport);
+crate::report::document::curve_document!(FlecnodalReport);

@@ -80,7 +80,7 @@ impl HlrReport {
                     patch: p.patch,
                     edge: p.edge,
                     param: p.param,
-                    reason: p.reason.clone().unwrap_or_default(),
+                    reason: p.reason.as_ref().map(|r| r.to_string()).unwrap_or_default(),
                 })
                 .collect(),
             pieces: h.pieces.clone(),

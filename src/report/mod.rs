@@ -2,6 +2,7 @@
 //! and OBJ drawings).
 
 pub mod bitangent;
+pub mod document;
 pub mod events;
 pub mod flecnodal;
 pub mod hlr;

@@ -413,13 +413,13 @@ pub(crate) fn obj_polyline(out: &mut String, next: &mut usize, points: &[[f64; 3
 /// Unresolved items grouped by reason, one line each: how many, and on what (the first 12
 /// keys, e.g. patches or pairs of patches).
 pub(crate) fn reason_lines<'a, K: Ord + std::fmt::Display>(
-    items: impl Iterator<Item = (&'a str, K)>,
+    items: impl Iterator<Item = (&'a crate::Reason, K)>,
     what: &str,
 ) -> String {
-    let mut reasons: std::collections::BTreeMap<&str, (usize, std::collections::BTreeSet<K>)> =
+    let mut reasons: std::collections::BTreeMap<String, (usize, std::collections::BTreeSet<K>)> =
         Default::default();
     for (reason, key) in items {
-        let e = reasons.entry(reason).or_default();
+        let e = reasons.entry(reason.to_string()).or_default();
         e.0 += 1;
         e.1.insert(key);
     }
@@ -438,43 +438,6 @@ pub(crate) fn reason_lines<'a, K: Ord + std::fmt::Display>(
     }
     out
 }
-
-/// A report of curves that `limn curves` writes in its four formats.
-pub trait CurveDocument {
-    /// The JSON document (pretty-printed).
-    fn json(&self) -> serde_json::Result<String>;
-    /// A short human-readable summary.
-    fn text(&self) -> String;
-    /// The curves drawn along a view direction.
-    fn svg(&self, model: &Model, view: &View) -> String;
-    /// The curves as OBJ polylines.
-    fn obj(&self) -> String;
-}
-
-/// Implements [`CurveDocument`] by the report's own methods of the same names.
-macro_rules! curve_document {
-    ($t:ty) => {
-        impl $crate::report::render::CurveDocument for $t {
-            fn json(&self) -> serde_json::Result<String> {
-                serde_json::to_string_pretty(self).map(|s| s + "\n")
-            }
-            fn text(&self) -> String {
-                <$t>::text(self)
-            }
-            fn svg(
-                &self,
-                model: &$crate::model::Model,
-                view: &$crate::analysis::view::View,
-            ) -> String {
-                <$t>::svg(self, model, view)
-            }
-            fn obj(&self) -> String {
-                <$t>::obj(self)
-            }
-        }
-    };
-}
-pub(crate) use curve_document;
 
 /// The work of a run of the curve solver, in the `stats` of the curve reports.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]

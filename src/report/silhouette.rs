@@ -73,6 +73,103 @@ pub struct SilhouetteStats {
 }
 
 impl SilhouetteReport {
+    /// The text summary.
+    pub fn text(&self) -> String {
+        let r = self;
+        let mut t = String::new();
+        let closed = r.curves.iter().filter(|c| c.closed).count();
+        t += &format!("model: {}\n", r.model);
+        if r.method != "certified" {
+            t += &format!(
+                "method: {} (uncertified float baseline of paper 002: nothing is proven)\n",
+                r.method
+            );
+        }
+        if r.view.is_null() {
+            t += &format!("kind: {}\n", r.kind);
+        } else {
+            t += &format!("view: {}\n", r.view);
+        }
+        t += &format!(
+            "curves: {} ({} closed); topology {}\n",
+            r.curves.len(),
+            closed,
+            if r.topology_certified {
+                "certified"
+            } else {
+                "NOT fully certified (see unresolved / unjoined)"
+            }
+        );
+        if r.method == "certified" {
+            let worst = r
+                .curves
+                .iter()
+                .filter_map(|c| c.error_bound)
+                .fold(0.0f64, f64::max);
+            match r.tolerance {
+                Some(tol) if r.certified => t += &format!("accuracy: certified, every segment within {worst:.3e} of the true curve (tolerance {tol:.3e})\n"),
+                Some(tol) => t += &format!("accuracy: tolerance {tol:.3e}; not certified for every curve (see the curves)\n"),
+                None => t += "accuracy: not bounded (no tolerance asked)\n",
+            }
+        }
+        for (i, c) in r.curves.iter().enumerate() {
+            t += &format!(
+                "  curve {i}: {} points, patches {:?}, {}{}\n",
+                c.points.len(),
+                c.patches,
+                if c.closed { "closed" } else { "open" },
+                if c.certified_topology {
+                    ""
+                } else {
+                    ", topology not certified"
+                }
+            );
+        }
+        for p in &r.singular_points {
+            t += &format!(
+                "singular point: patch {} at ({:.6}, {:.6}), {} arcs meet ({}), point [{:.6}, {:.6}, {:.6}]\n",
+                p.patch,
+                p.uv[0],
+                p.uv[1],
+                p.branches,
+                if p.exact { "exact" } else { "isolated" },
+                p.point[0],
+                p.point[1],
+                p.point[2]
+            );
+        }
+        for u in &r.unresolved {
+            t += &format!(
+                "unresolved: patch {}, {} boxes in [{:.6}, {:.6}] x [{:.6}, {:.6}]: {}\n",
+                u.patch, u.boxes, u.hull[0][0], u.hull[1][0], u.hull[0][1], u.hull[1][1], u.reason
+            );
+        }
+        for e in &r.unjoined_edges {
+            t += &format!("unjoined edge: patch {} {:?} / patch {} {:?} (no proven join: the two patches' functions are not proportional there (nor, for silhouettes, the normals parallel), and their zeros on it are not proven apart; or the curve meets a side on which it lies at a point known only within an interval)\n", e.0, e.1, e.2, e.3);
+        }
+        if !r.ending_edges.is_empty() {
+            t += &format!(
+                "edges where curves end: {} (the function jumps across them; crossings common to both patches are joined, every other is proven not to be a zero of the other patch's function)\n",
+                r.ending_edges.len()
+            );
+        }
+        let mut kinds: std::collections::BTreeMap<&str, usize> = std::collections::BTreeMap::new();
+        for d in &r.degenerate {
+            *kinds.entry(d.kind).or_default() += 1;
+        }
+        for (k, n) in kinds {
+            t += &format!("degenerate: {n} x {k}\n");
+        }
+        t += &format!(
+            "stats: {} boxes, {} sign questions escalated beyond f64, {:.1} ms on {} threads\n",
+            r.stats.boxes,
+            r.stats.escalations.escalated(),
+            r.stats.time_ms,
+            r.stats.threads
+        );
+        t
+    }
+
     /// The report of an uncertified float baseline (paper 002): curves per patch, nothing
     /// proven (`certified` and `topology_certified` are false).
     pub fn baseline(
@@ -121,7 +218,7 @@ impl SilhouetteReport {
                 patch: *p,
                 boxes: 0,
                 hull: [lo, hi],
-                reason: reason.clone(),
+                reason: reason.to_string(),
             });
             e.boxes += 1;
             for k in 0..2 {

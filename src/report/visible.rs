@@ -97,10 +97,10 @@ impl VisibleReport {
                 p.counts[2]
             );
         }
-        let mut reasons: BTreeMap<&str, (usize, f64)> = BTreeMap::new();
+        let mut reasons: BTreeMap<String, (usize, f64)> = BTreeMap::new();
         for p in &self.patches {
             for u in &p.unresolved {
-                let e = reasons.entry(&u.reason).or_default();
+                let e = reasons.entry(u.reason.to_string()).or_default();
                 e.0 += u.cells;
                 e.1 += u.domain_fraction;
             }

@@ -11,6 +11,7 @@
 use crate::bernstein::Bernstein;
 use crate::number::{Rational, Sign};
 use crate::solver::dyadic::Dyadic;
+use crate::solver::plane_curve::ArcKind;
 use crate::solver::plane_curve::{CellKind, CrossingId, CurveTopology};
 use crate::solver::precision::Level;
 use serde::{Deserialize, Serialize};
@@ -185,7 +186,7 @@ impl CurveCertificate {
                     .unwrap_or(usize::MAX),
                 from: id_of(a.from),
                 to: id_of(a.to),
-                along_edge: a.reason == "on edge",
+                along_edge: a.kind == ArcKind::OnEdge,
             })
             .collect();
         for &id in &t.touches {

@@ -7,6 +7,7 @@ use limn::analysis::bitangent::curves::{
 use limn::model::{Format, Model};
 use limn::number::Rational;
 use limn::testing::shapes;
+use limn::Reason;
 
 fn q(a: i64, b: i64) -> Rational {
     Rational::from((a, b))
@@ -170,7 +171,7 @@ fn two_spheres_bitangents_are_the_tangent_cones() {
             // What is left on one sphere is where its patches meet: the shared sides and poles.
             for u in &pair.unresolved {
                 assert!(
-                    u.reason.contains("meet in space"),
+                    u.reason == Reason::CoincidentPieces,
                     "{:?}: {}",
                     pair.patches,
                     u.reason
@@ -298,7 +299,7 @@ fn the_teapots_rim_top_is_a_plane_of_bitangent_pairs() {
     let labelled = b
         .unresolved
         .iter()
-        .filter(|u| u.reason.contains("2-dimensional set of bitangent pairs"))
+        .filter(|u| matches!(u.reason, Reason::PlaneSet { .. }))
         .count();
     eprintln!(
         "{labelled} of {} unresolved boxes are next to it",
@@ -309,7 +310,7 @@ fn the_teapots_rim_top_is_a_plane_of_bitangent_pairs() {
     for u in b
         .unresolved
         .iter()
-        .filter(|u| u.reason.contains("2-dimensional"))
+        .filter(|u| matches!(u.reason, Reason::PlaneSet { .. }))
     {
         for k in [0, 2] {
             let w = u.cell[k][1] - u.cell[k][0];
@@ -343,7 +344,7 @@ fn a_plane_found_through_one_pair_explains_the_others() {
         let generic = pair
             .unresolved
             .iter()
-            .filter(|u| u.reason.starts_with("no Jacobian minor"))
+            .filter(|u| u.reason == Reason::NoRegularMinor)
             .count();
         eprintln!(
             "{:?}: {} unresolved, {generic} generic",

@@ -5,6 +5,7 @@
 use limn::analysis::flecnodal::curves::{flecnodal_curves, patch_flecnodal, FlecnodalOptions};
 use limn::number::Rational;
 use limn::testing::shapes;
+use limn::Reason;
 
 fn q(n: i64, d: i64) -> Rational {
     Rational::from((n, d))
@@ -161,7 +162,7 @@ fn the_teapots_first_twelve_patches_are_solved_and_its_rim_has_one_branch_per_pa
     );
     let r = flecnodal_curves(&small, &FlecnodalOptions::with_tolerance(None)).unwrap();
     for p in &r.patches {
-        assert!(p.unresolved.iter().all(|u| !u.reason.is_empty()));
+        assert!(p.unresolved.iter().all(|u| u.reason != Reason::Unknown));
         eprintln!(
             "patch {}: {} branches, {} unresolved, {} boxes",
             p.patch,
@@ -203,7 +204,7 @@ fn the_handles_side_line_ends_at_an_exact_singular_point() {
         let holding: Vec<_> = f
             .unresolved
             .iter()
-            .filter(|u| u.reason.contains("exact singular point"))
+            .filter(|u| u.reason == Reason::UnresolvedSingularPoint)
             .collect();
         assert!(!holding.is_empty());
         for u in holding {

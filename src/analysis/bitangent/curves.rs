@@ -23,13 +23,13 @@ use crate::error::Error;
 use crate::geometry::vec3::cross;
 use crate::model::Model;
 use crate::number::{Interval, Number, Rational};
+use crate::reason::Reason;
 use crate::solver::chain::chain;
-use crate::solver::plane_curve::TIME_LIMIT_REASON;
 use crate::solver::precision::Escalations;
 use crate::solver::space_curve::ArcAccept;
 use crate::solver::space_curve::{
     solve_space_curve_excluding, unwarp, unwarp_interval, warp, BoxVerdict, SpaceCurve,
-    SpaceCurveOptions, NO_REGULAR_MINOR, UNRESOLVED_SINGULAR,
+    SpaceCurveOptions,
 };
 use crate::surface::Evaluator;
 use crate::surface::RationalPatch;
@@ -134,7 +134,7 @@ pub struct BitangentUnresolved {
     /// The surface points at the centres of the two parameter boxes (for drawing).
     pub at: [[f64; 3]; 2],
     /// Why.
-    pub reason: String,
+    pub reason: Reason,
 }
 
 /// An exact singular point of a bitangent curve (`proofs/space-curves.md` §6): the system and
@@ -245,16 +245,15 @@ fn explain_plane_sets(out: &mut PairBitangents, lines: &[Vec<TangentLine>; 2]) {
                 continue;
             }
             out.plane_sets.push(set);
-            let reason = format!(
-                "next to a 2-dimensional set of bitangent pairs, where no Jacobian minor is \
-                 regular: one plane is tangent to patch {i} along {} and to patch {j} along {} \
-                 (checked exactly; listed in plane_sets)",
-                l1.name(),
-                l2.name()
-            );
+            let reason = Reason::PlaneSet {
+                patches: [i, j],
+                lines: [l1.name(), l2.name()],
+            };
             for u in out.unresolved.iter_mut().filter(|u| {
-                (u.reason == NO_REGULAR_MINOR || u.reason == UNRESOLVED_SINGULAR)
-                    && near(&u.cell[l1.axis], &l1.at)
+                matches!(
+                    u.reason,
+                    Reason::NoRegularMinor | Reason::UnresolvedSingularPoint
+                ) && near(&u.cell[l1.axis], &l1.at)
                     && near(&u.cell[2 + l2.axis], &l2.at)
             }) {
                 u.reason.clone_from(&reason);
@@ -296,9 +295,6 @@ fn lambda(same: bool, k: usize) -> f64 {
     let k = if same { k % 2 } else { k };
     WARP[k].0 as f64 / WARP[k].1 as f64
 }
-
-const COINCIDENT_REASON: &str = "the two pieces may meet in space (a shared side, a pole or an \
-     intersection): pairs of nearby points are not separated from the coincident ones";
 
 /// A cone that contains every normal of a patch: a unit axis and a half-angle below π/2 (the
 /// normals are positive combinations of the coefficient vectors of the deflated normal).
@@ -430,7 +426,7 @@ pub fn pair_bitangents(
             patches: [i, j],
             at: centre(&cell),
             cell,
-            reason: TIME_LIMIT_REASON.to_string(),
+            reason: Reason::TimeLimit,
         });
         return out;
     }
@@ -489,7 +485,7 @@ pub fn pair_bitangents(
             let a = sides[0].jets.image(lo1, hi1);
             let b = sides[1].jets.image(lo2, hi2);
             if !matches!((a, b), (Some(a), Some(b)) if !boxes_meet(&a, &b)) {
-                return BoxVerdict::Unresolved(COINCIDENT_REASON);
+                return BoxVerdict::Unresolved(Reason::CoincidentPieces);
             }
         }
         BoxVerdict::Solve

@@ -370,11 +370,7 @@ impl PatchAccuracy {
     /// get uniformly spaced certified vertices, each checked against the bound with its own
     /// certified error and slope.
     pub fn trace(&self, arc: &Arc, from: [[f64; 2]; 2], to: [[f64; 2]; 2], tol: f64) -> Traced {
-        let graph = match arc.reason {
-            "graph over v" => Some(0),
-            "graph over u" => Some(1),
-            _ => None,
-        };
+        let graph = arc.kind.monotone_axis();
         self.trace_in(arc.cell.to_f64(), graph, from, to, tol)
     }
 

@@ -104,7 +104,7 @@ pub struct Silhouette {
     /// Degenerate cases.
     pub degenerate: Vec<Degenerate>,
     /// Undecided regions: (patch, box, reason).
-    pub unresolved: Vec<(usize, crate::solver::DyadicBox, String)>,
+    pub unresolved: Vec<(usize, crate::solver::DyadicBox, crate::Reason)>,
     /// Shared edges across which the curves could not be joined with proof (patch sides).
     pub unjoined_edges: Vec<(usize, Edge, usize, Edge)>,
     /// Shared edges across which the function jumps (a crease for silhouettes, a curvature

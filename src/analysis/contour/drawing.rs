@@ -29,11 +29,10 @@ pub(crate) fn densify(
     steps: usize,
 ) -> Vec<[f64; 2]> {
     let (p0, p1) = (t.point(&a.from), t.point(&a.to));
-    let m = match a.reason {
-        "graph over v" => 0,
-        "graph over u" => 1,
+    let m = match a.kind.monotone_axis() {
+        Some(m) => m,
         // Along an edge where g vanishes: every point of the segment is on the curve.
-        _ => {
+        None => {
             let n = 4 * steps;
             return (0..=n)
                 .map(|i| {

@@ -17,6 +17,7 @@ use crate::bernstein::Bernstein;
 use crate::model::{Model, PatchAdjacency, WeldTolerance};
 use crate::number::{Precision, Rational};
 use crate::solver::plane_curve::zero_lines::{add_line, solve_curve_lines, LinedCurve, ZeroLine};
+use crate::solver::plane_curve::ArcKind;
 use crate::solver::precision::Policy;
 use crate::solver::{CurveOptions, CurveTopology, Dyadic, Escalations};
 use crate::surface::{Edge, RationalPatch};
@@ -234,7 +235,7 @@ pub fn model_curves(
         });
         tops[patch]
             .arcs
-            .retain(|a| !(a.reason == "on edge" && both_on(&a.from, &a.to, edge)));
+            .retain(|a| !(a.kind == ArcKind::OnEdge && both_on(&a.from, &a.to, edge)));
     }
     // Shared edges: join crossings when the two side polynomials are exactly proportional.
     let mut unjoined = Vec::new();

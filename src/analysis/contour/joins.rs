@@ -10,6 +10,7 @@ use crate::bernstein::Bernstein;
 use crate::model::SideUse;
 use crate::number::Rational;
 use crate::solver::plane_curve::zero_lines::{add_line, line_point};
+use crate::solver::plane_curve::ArcKind;
 use crate::solver::precision::Policy;
 use crate::solver::{CrossingId, CurveTopology, Dyadic};
 use crate::surface::{Edge, RationalPatch};
@@ -265,7 +266,7 @@ pub(crate) fn join_by_quotients(
         let ids = t
             .arcs
             .iter()
-            .filter(|a| a.reason != "on edge")
+            .filter(|a| a.kind != ArcKind::OnEdge)
             .flat_map(|a| [a.from, a.to])
             .chain(t.touches.iter().copied());
         for id in ids {
@@ -349,7 +350,7 @@ pub(crate) fn join_zero_side(
                     // leave b's crossings on it unjoined.
                     Some(Err(())) => {
                         tops[b.patch].arcs.retain(|arc| {
-                            !(arc.reason == "on edge" && both_on(&arc.from, &arc.to, b.edge))
+                            !(arc.kind == ArcKind::OnEdge && both_on(&arc.from, &arc.to, b.edge))
                         });
                         return join_by_quotients(tops, solved, a, b, reversed, joins);
                     }
@@ -367,7 +368,7 @@ pub(crate) fn join_zero_side(
     for (patch, edge) in [(a.patch, a.edge), (b.patch, b.edge)] {
         tops[patch]
             .arcs
-            .retain(|arc| !(arc.reason == "on edge" && both_on(&arc.from, &arc.to, edge)));
+            .retain(|arc| !(arc.kind == ArcKind::OnEdge && both_on(&arc.from, &arc.to, edge)));
     }
     ts.sort();
     ts.dedup();
@@ -384,7 +385,7 @@ pub(crate) fn join_zero_side(
             from,
             to,
             cell: crate::solver::DyadicBox::UNIT,
-            reason: "on edge",
+            kind: ArcKind::OnEdge,
         });
     }
     for (patch, id, t) in nodes {
@@ -440,7 +441,7 @@ pub(crate) fn join_one_sided(
     let c = if at_one { Dyadic::ONE } else { Dyadic::ZERO };
     let tz = &mut tops[zero.patch];
     tz.arcs
-        .retain(|arc| !(arc.reason == "on edge" && both_on(&arc.from, &arc.to, zero.edge)));
+        .retain(|arc| !(arc.kind == ArcKind::OnEdge && both_on(&arc.from, &arc.to, zero.edge)));
     let at: Vec<Dyadic> = extra.iter().map(|e| e.1).collect();
     add_line(tz, fixed, c, &at);
     for (id, t) in extra {

@@ -18,8 +18,8 @@ use crate::analysis::projection::lift;
 use crate::error::Error;
 use crate::model::Model;
 use crate::number::{Interval, Number, Rational};
+use crate::reason::Reason;
 use crate::solver::chain::chain;
-use crate::solver::plane_curve::TIME_LIMIT_REASON;
 use crate::solver::precision::Escalations;
 use crate::solver::space_curve::{
     solve_space_curve_where, unwarp, unwarp_interval, warp, ArcAccept, SpaceCrossing, SpaceCurve,
@@ -115,7 +115,7 @@ pub struct FlecnodalUnresolved {
     /// The surface point at the centre of the box's `(u, v)` (for drawing).
     pub at: [f64; 3],
     /// Why.
-    pub reason: String,
+    pub reason: Reason,
 }
 
 /// An exact singular point of the flecnodal curve (`proofs/space-curves.md` §6): the system
@@ -287,7 +287,7 @@ pub fn patch_flecnodal(
                 chart,
                 cell: vec![[0.0, 1.0]; 3],
                 at,
-                reason: TIME_LIMIT_REASON.to_string(),
+                reason: Reason::TimeLimit,
             })
             .to_vec();
         return out;

@@ -53,8 +53,8 @@ const MAX_DEPTH: u32 = 10;
 /// use limn::testing::shapes;
 /// let torus = shapes::torus(&Rational::from(2), &Rational::from(1));
 /// let tilted = View::Direction([1, 2, -20].map(Rational::from));
-/// let mut counts = Escalations::default();
-/// let mut policy = Policy::new(&Ladder::default(), &mut counts);
+/// let (ladder, mut counts) = (Ladder::default(), Escalations::default());
+/// let mut policy = Policy::new(&ladder, &mut counts);
 /// // Seen from nearly above, the top patches face the viewer and the bottom ones away.
 /// let kinds: Vec<Facing> = torus.iter().map(|p| facing(p, &tilted, &mut policy)).collect();
 /// assert!(kinds.contains(&Facing::Front) && kinds.contains(&Facing::Back));

@@ -30,6 +30,7 @@ use crate::analysis::visibility::sheets::{fold_box, fold_box_around, injective_b
 use crate::bernstein::Bernstein;
 use crate::bernstein::Poly;
 use crate::number::{Interval, Number, Precision, Rational};
+use crate::reason::Reason;
 use crate::solver::dyadic::Dyadic;
 use crate::solver::system::{solve_system_excluding, DyadicBoxN, SystemOptions};
 use crate::surface::Edge;
@@ -166,7 +167,7 @@ impl Sample {
 /// # Errors
 /// Why the count is not proven (the caller may try another sample): a ray through a patch
 /// edge or tangent to a patch, a point whose own sheet could not be excluded, a budget.
-pub fn layers_in_front(scene: &Scene, sample: &Sample, opts: &RayOptions) -> Result<usize, String> {
+pub fn layers_in_front(scene: &Scene, sample: &Sample, opts: &RayOptions) -> Result<usize, Reason> {
     layers(scene, sample, opts, false).map(|l| l.in_front)
 }
 
@@ -190,7 +191,7 @@ pub struct Layers {
     pub in_front: usize,
     /// Every point of the model on the ray behind the sample (each with its own enclosure),
     /// or why they are not proven; empty if not asked.
-    pub behind: Result<Vec<Hit>, String>,
+    pub behind: Result<Vec<Hit>, Reason>,
 }
 
 impl Layers {
@@ -199,7 +200,7 @@ impl Layers {
     ///
     /// # Errors
     /// The points behind are not proven, or two of them are not proven apart in depth.
-    pub fn first_behind(&self) -> Result<Option<&Hit>, String> {
+    pub fn first_behind(&self) -> Result<Option<&Hit>, Reason> {
         let behind = self.behind.as_ref().map_err(|e| e.clone())?;
         let Some(first) = behind
             .iter()
@@ -214,7 +215,7 @@ impl Layers {
         if apart {
             Ok(Some(first))
         } else {
-            Err("two surface points behind it are not proven apart in depth".into())
+            Err(Reason::DepthsNotApart)
         }
     }
 }
@@ -230,18 +231,16 @@ pub fn layers(
     sample: &Sample,
     opts: &RayOptions,
     behind: bool,
-) -> Result<Layers, String> {
-    let ps = sample
-        .system(scene)
-        .ok_or("the sample's parameters are not dyadic")?;
+) -> Result<Layers, Reason> {
+    let ps = sample.system(scene).ok_or(Reason::SampleNotDyadic)?;
     let own = sample.patch();
     // The sample's depth range and image box, to skip patches that cannot be in front.
     let pb = point_bounds(&ps);
     let mut count = 0;
-    let mut hits: Result<Vec<Hit>, String> = if behind {
+    let mut hits: Result<Vec<Hit>, Reason> = if behind {
         Ok(Vec::new())
     } else {
-        Err("not asked".into())
+        Err(Reason::NotAsked)
     };
     for (j, jb) in scene.bounds.iter().enumerate() {
         if !jb.meets_image(&pb) || (!behind && jb.depth[0] > pb.depth[1]) {
@@ -277,20 +276,17 @@ pub fn layers(
                             .then(|| fold_box_around(scene, j, &c, &c))
                             .flatten()
                     });
-                    exclude.push(bx.ok_or_else(|| {
-                        format!("the point's own sheet on patch {j} is not excluded (the image map is not provably injective near it)")
-                    })?);
+                    exclude.push(bx.ok_or(Reason::OwnSheet { patch: j })?);
                 }
             }
             Sample::Silhouette {
                 axis, at, interval, ..
             } => {
                 if j == own {
-                    exclude.push(fold_box(scene, j, *axis, at, interval).ok_or_else(|| {
-                        format!(
-                            "the fold lemma does not hold near the silhouette point on patch {j}"
-                        )
-                    })?);
+                    exclude.push(
+                        fold_box(scene, j, *axis, at, interval)
+                            .ok_or(Reason::FoldLemma { patch: j })?,
+                    );
                 }
             }
         }
@@ -353,7 +349,7 @@ fn hits_on_ray(
     j: usize,
     exclude: &[DyadicBoxN],
     opts: &RayOptions,
-) -> Result<(usize, Result<Vec<Hit>, String>), String> {
+) -> Result<(usize, Result<Vec<Hit>, Reason>), Reason> {
     let n = ps.nvars + 2;
     let pim = &ps.image;
     let jim = &scene.images[j];
@@ -372,7 +368,7 @@ fn hits_on_ray(
     square.extend(ps.constraints.iter().map(|c| lift(c, n, 0)));
     let front_i: Bernstein<Interval> = front.convert(Precision::F64);
     let mut count = 0;
-    let mut behind: Result<Vec<Hit>, String> = Ok(Vec::new());
+    let mut behind: Result<Vec<Hit>, Reason> = Ok(Vec::new());
     let mut domain = ps.domain.clone();
     domain.extend([(Dyadic::ZERO, Dyadic::ONE), (Dyadic::ZERO, Dyadic::ONE)]);
     let exclude: Vec<DyadicBoxN> = exclude
@@ -381,9 +377,7 @@ fn hits_on_ray(
         .collect();
     let r = solve_system_excluding(&square, &[], &domain, &exclude, &opts.system);
     if !r.unresolved.is_empty() {
-        return Err(format!(
-            "the ray meets patch {j} where its intersections are not isolated (tangent to the patch, or a budget)"
-        ));
+        return Err(Reason::RayIntersections { patch: j });
     }
     for root in &r.roots {
         let inside_domain = root.inside;
@@ -398,11 +392,13 @@ fn hits_on_ray(
         let on = front_i.restrict_box_f64(&lo, &hi);
         let c = on.coeffs();
         let is_behind = c.iter().all(|x| x.lo() > 0.0);
-        let near = || {
-            format!(
-                "the ray passes within {:.1e} of the boundary of patch {j} (or of the box around the point's own sheet)",
-                root.enclosure.iter().map(|e| e[1] - e[0]).fold(0.0, f64::max)
-            )
+        let near = || Reason::RayNearBoundary {
+            patch: j,
+            distance: root
+                .enclosure
+                .iter()
+                .map(|e| e[1] - e[0])
+                .fold(0.0, f64::max),
         };
         if is_behind {
             if !inside_domain || near_excluded {
@@ -423,9 +419,7 @@ fn hits_on_ray(
         if c.iter().all(|x| x.hi() < 0.0) {
             count += 1;
         } else {
-            return Err(format!(
-                "the ray meets patch {j} at the depth of the point (the point may lie on patch {j})"
-            ));
+            return Err(Reason::RayAtDepth { patch: j });
         }
     }
     Ok((count, behind))

@@ -30,8 +30,6 @@ impl Question for BoxSigns<'_> {
         })
     }
 }
-/// Why a cell is unresolved.
-pub(crate) const UNRESOLVED_CELL: &str = "no direction in which g is monotone within the depth budget: a singular point of the curve, or a critical point of g very close to it";
 /// The depth from which undecided box signs are escalated beyond f64.
 pub(crate) const ESCALATION_DEPTH: u32 = 10;
 /// The strict sign of `p` on the box if its coefficients prove one, else `Unknown`, with the

@@ -9,6 +9,7 @@
 
 use crate::bernstein::Bernstein;
 use crate::number::{Interval, Precision, Rational};
+use crate::reason::Reason;
 use crate::solver::dyadic::{Dyadic, DyadicBox};
 use crate::solver::precision::{Escalations, Ladder};
 use crate::solver::system::{simplest_rational, solve_system, SystemOptions};
@@ -38,31 +39,23 @@ impl CriticalPoint {
     /// Why an undecided box near it is undecided, in words. The box is said to hold the only
     /// critical point of g in it only when the point's enclosure lies inside the box and the
     /// box inside the region where the point is the gradient's only zero.
-    pub fn reason(&self, cell: &DyadicBox) -> String {
+    pub fn reason(&self, cell: &DyadicBox) -> Reason {
         let [lo, hi] = self.enclosure;
         let [clo, chi] = cell.to_f64();
         let inside = |a: [[f64; 2]; 2], b: [[f64; 2]; 2]| {
             (0..2).all(|k| b[0][k] <= a[0][k] && a[1][k] <= b[1][k])
         };
         let sole = inside(self.enclosure, [clo, chi]) && inside([clo, chi], self.unique_in);
-        let holds = if sole {
-            "holds the only critical point of g"
-        } else {
-            "meets the enclosure of a critical point of g"
-        };
         match (&self.on_curve, &self.exact) {
-            (Some(true), Some([u, v])) => format!(
-                "near a singular point of the curve exactly at (u, v) = ({u}, {v}) (g and its gradient vanish there, checked exactly); its branches are not resolved"
-            ),
-            (Some(false), _) => format!(
-                "{holds} near ({:.9}, {:.9}) (Krawczyk), which is off the curve; the box was not decided within the depth budget",
-                0.5 * (lo[0] + hi[0]),
-                0.5 * (lo[1] + hi[1])
-            ),
-            _ => format!(
-                "{holds} in [{:.3e}, {:.3e}] x [{:.3e}, {:.3e}] (Krawczyk), where g's enclosure contains 0: a singular point of the curve or a critical point just off it, not decided",
-                lo[0], hi[0], lo[1], hi[1]
-            ),
+            (Some(true), Some(uv)) => Reason::SingularPointAt { uv: uv.clone() },
+            (Some(false), _) => Reason::CriticalPointOffCurve {
+                sole,
+                at: [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])],
+            },
+            _ => Reason::CriticalPointUndecided {
+                sole,
+                enclosure: [lo, hi],
+            },
         }
     }
 }

@@ -2,9 +2,11 @@
 //! variable, determined by the crossings on the box's edges (`proofs/curve-topology.md`).
 
 use crate::number::Sign;
+use crate::reason::Reason;
 use crate::solver::dyadic::{Dyadic, DyadicBox};
 use crate::solver::plane_curve::segments::{uv, Lines, SegmentRoots};
 use crate::solver::plane_curve::topology::Arc;
+use crate::solver::plane_curve::ArcKind;
 use crate::solver::plane_curve::CrossingId;
 use crate::solver::precision::Escalations;
 use crate::solver::univariate::{refine_root, Root};
@@ -29,7 +31,7 @@ pub(crate) fn edge_events(
     side: usize,
     o_lo: Dyadic,
     o_hi: Dyadic,
-) -> Result<Vec<Event>, String> {
+) -> Result<Vec<Event>, Reason> {
     let cuts = lines.cuts(m, c, o_lo, o_hi);
     let mut events = Vec::new();
     for (i, &s) in cuts.iter().enumerate() {
@@ -42,13 +44,19 @@ pub(crate) fn edge_events(
                 id: CrossingId::Exact { u, v },
                 zero: false,
             }),
-            Sign::Unknown => return Err("the sign of g at a box corner was not decided".into()),
+            Sign::Unknown => return Err(Reason::CornerSign),
             _ => {}
         }
         if let Some(&s1) = cuts.get(i + 1) {
             match lines.segment(m, c, s, s1) {
-                SegmentRoots::Zero => events.push(Event { lo: s, hi: s1, side, id: CrossingId::Exact { u, v }, zero: true }),
-                SegmentRoots::Unresolved => return Err("a multiple root of g on a box edge (the curve is tangent to the edge) was not isolated".into()),
+                SegmentRoots::Zero => events.push(Event {
+                    lo: s,
+                    hi: s1,
+                    side,
+                    id: CrossingId::Exact { u, v },
+                    zero: true,
+                }),
+                SegmentRoots::Unresolved => return Err(Reason::TangentToBoxEdge),
                 SegmentRoots::Roots(roots) => {
                     for (k, r) in roots.iter().enumerate() {
                         let id = match *r {
@@ -56,9 +64,21 @@ pub(crate) fn edge_events(
                                 let (u, v) = uv(m, c, t);
                                 CrossingId::Exact { u, v }
                             }
-                            Root::Between { .. } => CrossingId::Segment { fixed: m, c, s0: s, s1, k },
+                            Root::Between { .. } => CrossingId::Segment {
+                                fixed: m,
+                                c,
+                                s0: s,
+                                s1,
+                                k,
+                            },
                         };
-                        events.push(Event { lo: r.lo(), hi: r.hi(), side, id, zero: false });
+                        events.push(Event {
+                            lo: r.lo(),
+                            hi: r.hi(),
+                            side,
+                            id,
+                            zero: false,
+                        });
                     }
                 }
             }
@@ -87,7 +107,7 @@ pub(crate) fn o_edge_crossing(
     o_c: Dyadic,
     m_lo: Dyadic,
     m_hi: Dyadic,
-) -> Result<CrossingId, String> {
+) -> Result<CrossingId, Reason> {
     let o = 1 - m;
     let cuts = lines.cuts(o, o_c, m_lo, m_hi);
     let mut prev: Option<(Dyadic, Sign)> = None;
@@ -96,7 +116,7 @@ pub(crate) fn o_edge_crossing(
         let sg = lines.sign_at(u, v);
         match sg {
             Sign::Zero => return Ok(CrossingId::Exact { u, v }),
-            Sign::Unknown => return Err("the sign of g at a box corner was not decided".into()),
+            Sign::Unknown => return Err(Reason::CornerSign),
             _ => {}
         }
         if let Some((s_prev, sp)) = prev {
@@ -112,7 +132,9 @@ pub(crate) fn o_edge_crossing(
         }
         prev = Some((s, sg));
     }
-    Err("internal: no sign change on a box edge the curve crosses".into())
+    Err(Reason::Internal(
+        "no sign change on a box edge the curve crosses",
+    ))
 }
 /// The arcs in a box where g is strictly monotone along `m` (a graph over the other variable).
 /// Touch points met in a monotone box: (crossing, isolated in this box).
@@ -122,14 +144,10 @@ pub(crate) fn graph_box_arcs(
     cell: DyadicBox,
     m: usize,
     touches: &mut Touches,
-) -> Result<Vec<Arc>, String> {
+) -> Result<Vec<Arc>, Reason> {
     let o = 1 - m;
     let (o_lo, o_hi) = (cell.lo[o], cell.hi[o]);
-    let reason = if m == 0 {
-        "graph over v"
-    } else {
-        "graph over u"
-    };
+    let kind = ArcKind::graph(m);
     let mut events = edge_events(lines, m, cell.lo[m], 0, o_lo, o_hi)?;
     events.extend(edge_events(lines, m, cell.hi[m], 1, o_lo, o_hi)?);
     // Separate the events: they may touch only where both are open root intervals (whose
@@ -169,12 +187,12 @@ pub(crate) fn graph_box_arcs(
             }
         }
         if !refined {
-            return Err("roots of g on opposite box edges could not be separated".into());
+            return Err(Reason::OppositeEdgeRoots);
         }
     }
     events.sort_by_key(|e| (e.lo, e.hi));
     if (1..events.len()).any(|i| conflict(&events[i - 1], &events[i])) {
-        return Err("roots of g on opposite box edges could not be separated".into());
+        return Err(Reason::OppositeEdgeRoots);
     }
     // Whether the curve is in the box, in each gap between events (and before the first and
     // after the last): the signs of g on the two m-edges differ there. A gap that is a single
@@ -185,8 +203,7 @@ pub(crate) fn graph_box_arcs(
         let a = left.map_or(o_lo, |e| e.hi);
         let b = right.map_or(o_hi, |e| e.lo);
         let s = if a < b {
-            a.midpoint(b)
-                .ok_or("the depth budget was reached separating roots")?
+            a.midpoint(b).ok_or(Reason::RootSeparationDepth)?
         } else {
             let at_root = left.is_some_and(|e| !is_open(e)) || right.is_some_and(|e| !is_open(e));
             if at_root {
@@ -199,7 +216,7 @@ pub(crate) fn graph_box_arcs(
         let (u1, v1) = uv(m, cell.hi[m], s);
         let (sa, sb) = (lines.sign_at(u0, v0), lines.sign_at(u1, v1));
         if !sa.is_nonzero() || !sb.is_nonzero() {
-            return Err("the sign of g between roots was not decided".into());
+            return Err(Reason::SignBetweenRoots);
         }
         gap_in.push(Some(sa != sb));
     }
@@ -228,7 +245,7 @@ pub(crate) fn graph_box_arcs(
                         from: s,
                         to: a,
                         cell,
-                        reason,
+                        kind,
                     });
                 }
             }
@@ -236,7 +253,7 @@ pub(crate) fn graph_box_arcs(
                 from: a,
                 to: b,
                 cell,
-                reason: "on edge",
+                kind: ArcKind::OnEdge,
             });
             if after == Some(true) {
                 start = Some(b);
@@ -252,7 +269,7 @@ pub(crate) fn graph_box_arcs(
                     from: s,
                     to: e.id,
                     cell,
-                    reason,
+                    kind,
                 });
                 start = None;
             }
@@ -272,10 +289,12 @@ pub(crate) fn graph_box_arcs(
                 from: s,
                 to: end,
                 cell,
-                reason,
+                kind,
             });
         } else {
-            return Err("internal: a component of the curve has no end in its box".into());
+            return Err(Reason::Internal(
+                "a component of the curve has no end in its box",
+            ));
         }
     }
     Ok(arcs)

@@ -18,12 +18,13 @@ pub mod topology;
 pub mod zero_lines;
 
 pub(crate) use topology::chain;
-pub use topology::{Arc, Branch, Cell, CellKind, CurveTopology, Unresolved};
+pub use topology::{Arc, ArcKind, Branch, Cell, CellKind, CurveTopology, Unresolved};
 
 use crate::bernstein::Bernstein;
 use crate::number::{Interval, Precision, Rational};
+use crate::reason::Reason;
 use crate::solver::dyadic::{Dyadic, DyadicBox};
-use crate::solver::plane_curve::box_signs::{strict_sign, ESCALATION_DEPTH, UNRESOLVED_CELL};
+use crate::solver::plane_curve::box_signs::{strict_sign, ESCALATION_DEPTH};
 use crate::solver::plane_curve::critical_points::critical_points;
 use crate::solver::plane_curve::graph_boxes::{graph_box_arcs, Touches};
 use crate::solver::plane_curve::segments::{integer_multiple, locate, on_square_boundary, Lines};
@@ -67,10 +68,6 @@ impl CurveOptions {
             .is_some_and(|d| std::time::Instant::now() >= d)
     }
 }
-
-/// The reason given for boxes left undecided because the time limit was reached.
-pub const TIME_LIMIT_REASON: &str =
-    "the time limit was reached before this box was decided (--time-limit)";
 
 /// Where the curve meets a box edge; equal for every box that shares the point.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize)]
@@ -229,16 +226,15 @@ pub fn solve_curve_cut(
             CellKind::Unresolved => out.unresolved.push(Unresolved {
                 cell: *cell,
                 reason: if out_of_time.contains(cell) {
-                    TIME_LIMIT_REASON
+                    Reason::TimeLimit
                 } else {
-                    UNRESOLVED_CELL
-                }
-                .to_string(),
+                    Reason::NoMonotoneDirection
+                },
             }),
             // Past the time limit, monotone boxes are not worked out any more.
             CellKind::Graph { .. } if opts.past_deadline() => out.unresolved.push(Unresolved {
                 cell: *cell,
-                reason: TIME_LIMIT_REASON.to_string(),
+                reason: Reason::TimeLimit,
             }),
             CellKind::Graph { m, .. } => match graph_box_arcs(&mut lines, *cell, m, &mut touches) {
                 Ok(mut a) => arcs.append(&mut a),
@@ -262,7 +258,7 @@ pub fn solve_curve_cut(
     }
     // Arcs along an edge are found from both sides: keep one.
     let mut seen = BTreeSet::new();
-    arcs.retain(|a| a.reason != "on edge" || seen.insert((a.from.min(a.to), a.from.max(a.to))));
+    arcs.retain(|a| a.kind != ArcKind::OnEdge || seen.insert((a.from.min(a.to), a.from.max(a.to))));
 
     // One-point components: a point where the curve touches the boundary of the square from
     // outside, on no arc and passed through by none.

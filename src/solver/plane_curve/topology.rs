@@ -3,12 +3,60 @@
 //! chaining of arcs into branches.
 
 use crate::number::Sign;
+use crate::reason::Reason;
 use crate::solver::dyadic::{Dyadic, DyadicBox};
 use crate::solver::plane_curve::critical_points::CriticalPoint;
 use crate::solver::plane_curve::segments::on_square_boundary;
 use crate::solver::plane_curve::CrossingId;
 use crate::solver::precision::{Escalations, Level};
 use std::collections::{BTreeMap, BTreeSet};
+
+/// Why a piece of the curve in a box is one arc.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ArcKind {
+    /// `g` is monotone in u on the box: the arc is a graph over v (it meets every line
+    /// `v = c` at most once).
+    GraphOverV,
+    /// `g` is monotone in v on the box: the arc is a graph over u.
+    GraphOverU,
+    /// `g` vanishes identically on this segment of a box edge: the arc is the segment.
+    OnEdge,
+}
+
+impl ArcKind {
+    /// The graph's arc for `g` monotone along `axis` (0: u, 1: v).
+    pub fn graph(axis: usize) -> ArcKind {
+        if axis == 0 {
+            ArcKind::GraphOverV
+        } else {
+            ArcKind::GraphOverU
+        }
+    }
+
+    /// The axis along which `g` is monotone on the box (0: u, 1: v); `None` on an edge.
+    pub fn monotone_axis(self) -> Option<usize> {
+        match self {
+            ArcKind::GraphOverV => Some(0),
+            ArcKind::GraphOverU => Some(1),
+            ArcKind::OnEdge => None,
+        }
+    }
+
+    /// "graph over v", "graph over u" or "on edge".
+    pub fn as_str(self) -> &'static str {
+        match self {
+            ArcKind::GraphOverV => "graph over v",
+            ArcKind::GraphOverU => "graph over u",
+            ArcKind::OnEdge => "on edge",
+        }
+    }
+}
+
+impl serde::Serialize for ArcKind {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(self.as_str())
+    }
+}
 
 /// A piece of the curve inside one box, between two crossings.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
@@ -20,9 +68,9 @@ pub struct Arc {
     /// The box that contains it.
     #[serde(rename = "box")]
     pub cell: DyadicBox,
-    /// Why it is a single arc: "graph over v" (g monotone in u), "graph over u", or
-    /// "on edge" (g vanishes identically on this box edge segment).
-    pub reason: &'static str,
+    /// Why it is a single arc (in the JSON, `"reason"`: its sentence).
+    #[serde(rename = "reason")]
+    pub kind: ArcKind,
 }
 /// A region whose topology was not decided.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
@@ -31,7 +79,7 @@ pub struct Unresolved {
     #[serde(rename = "box")]
     pub cell: DyadicBox,
     /// Why.
-    pub reason: String,
+    pub reason: Reason,
 }
 /// A connected component of the curve in the square: an ordered chain of crossings.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]

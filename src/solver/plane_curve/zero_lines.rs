@@ -12,7 +12,9 @@
 
 use crate::bernstein::Bernstein;
 use crate::number::Rational;
+use crate::reason::Reason;
 use crate::solver::dyadic::{Dyadic, DyadicBox};
+use crate::solver::plane_curve::ArcKind;
 use crate::solver::plane_curve::{Arc, CrossingId, CurveTopology};
 use crate::solver::precision::{Escalations, Ladder};
 use crate::solver::univariate::{isolate_roots, refine_root, Root};
@@ -191,7 +193,7 @@ pub fn add_line(t: &mut CurveTopology, fixed: usize, c: Dyadic, at: &[Dyadic]) {
         for cell in cells {
             t.unresolved.push(crate::solver::plane_curve::Unresolved {
                 cell,
-                reason: "the curve touches a line or side on which the function vanishes, from one side: the junction there is not resolved".into(),
+                reason: Reason::OneSidedTouch,
             });
         }
     }
@@ -228,7 +230,7 @@ pub fn add_line(t: &mut CurveTopology, fixed: usize, c: Dyadic, at: &[Dyadic]) {
             from: w[0].2,
             to: w[1].2,
             cell: DyadicBox::UNIT,
-            reason: "on edge",
+            kind: ArcKind::OnEdge,
         });
     }
 }

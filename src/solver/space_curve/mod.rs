@@ -32,6 +32,7 @@ pub use warp::{unwarp, unwarp_exact, unwarp_interval, warp};
 
 use crate::bernstein::Bernstein;
 use crate::number::Rational;
+use crate::reason::Reason;
 use crate::solver::precision::Ladder;
 use crate::solver::space_curve::assemble::assemble;
 use crate::solver::space_curve::singular_branches::HigherPartials;
@@ -152,7 +153,7 @@ pub fn solve_space_curve_where(
 
 /// What a caller says of a box before the solver examines it (see
 /// [`solve_space_curve_excluding`]).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum BoxVerdict {
     /// Examine it as usual.
     Solve,
@@ -161,7 +162,7 @@ pub enum BoxVerdict {
     /// curve on the faces it shares with kept boxes stay, as ends of their branches.
     Drop,
     /// The caller gives up on the box: it is reported unresolved with this reason.
-    Unresolved(&'static str),
+    Unresolved(Reason),
 }
 
 /// [`solve_space_curve_where`] with a caller's verdict on every box before it is examined
@@ -227,15 +228,6 @@ pub fn solve_space_curve_excluding(
         .collect();
     out
 }
-
-/// The reason of a box the graph test could not decide for want of a regular minor.
-pub const NO_REGULAR_MINOR: &str =
-    "no Jacobian minor is proven regular (near a singular point of the \
-                                curve, or where its equations are nearly dependent)";
-
-/// The reason of a box around a known singular point that the star test did not decide.
-pub const UNRESOLVED_SINGULAR: &str = "holds an exact singular point of the curve (listed in \
-                                   singular_points) whose branches were not resolved";
 
 /// The star test is tried on boxes around a singular point from this depth on.
 pub(crate) const STAR_MIN_DEPTH: u32 = 2;

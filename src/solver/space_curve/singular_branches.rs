@@ -18,6 +18,7 @@
 
 use crate::bernstein::Bernstein;
 use crate::number::{Interval, Number, Precision, Rational};
+use crate::reason::Reason;
 use crate::solver::system::{inverse, simplest_rational};
 
 /// An exact singular point of the curve, with what the star test needs at it.
@@ -339,7 +340,7 @@ pub(crate) struct StarBranch {
 }
 
 /// Why the star test failed, or its branches.
-pub(crate) type StarResult = Result<Vec<StarBranch>, &'static str>;
+pub(crate) type StarResult = Result<Vec<StarBranch>, Reason>;
 
 /// The most pieces of facets examined in one star test (the stars of the tests need at most
 /// 50; a box too large for the test, or a point whose tangent cone is not transversal, would
@@ -357,7 +358,7 @@ pub(crate) fn star_branches(
     hi: &[f64],
 ) -> StarResult {
     if !sp.transversal {
-        return Err("the tangent cone at the singular point is not transversal");
+        return Err(Reason::TangentCone);
     }
     let n = lo.len();
     // The facets below reach up to an ulp outside B − p (outward rounding), so the Lagrange
@@ -514,8 +515,7 @@ struct Facet {
 fn facet_search(sp: &SingularPoint, rem: &Remainder, facets: Vec<Facet>) -> StarResult {
     let h_of = |w: &[Interval]| h_enclosure(sp, rem, w);
     let jac_of = |w: &[Interval], free: &[usize]| jac_enclosure(sp, rem, w, free);
-    let undecided =
-        "the boundary of the box around the singular point was not decided within the budget";
+    let undecided = Reason::StarUndecided;
     let mut branches = Vec::new();
     let mut examined = 0usize;
     for Facet {

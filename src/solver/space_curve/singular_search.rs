@@ -3,14 +3,14 @@
 
 use crate::bernstein::Bernstein;
 use crate::number::{Interval, Number, Precision, Rational};
+use crate::reason::Reason;
 use crate::solver::dyadic::Dyadic;
 use crate::solver::space_curve::singular_branches::{
     exact_singular_point, simple_points_near, ExactPartials, SingularPoint,
 };
 use crate::solver::space_curve::subdivision::{RawArc, RawCrossing, Settled, Solver};
 use crate::solver::space_curve::topology::{SpaceCurve, SpaceUnresolved};
-use crate::solver::space_curve::{SpaceCurveOptions, NO_REGULAR_MINOR};
-use crate::solver::space_curve::{STAR_MIN_DEPTH, UNRESOLVED_SINGULAR};
+use crate::solver::space_curve::{SpaceCurveOptions, STAR_MIN_DEPTH};
 use crate::solver::system::DyadicBoxN;
 use crate::solver::system::{f64_box, overlaps, within};
 
@@ -127,7 +127,7 @@ pub(crate) fn star_around(
     }
     // Not decided: the undecided boxes that hold the point say so.
     for u in out.unresolved.iter_mut().filter(|u| holds_p(&u.cell)) {
-        u.reason = UNRESOLVED_SINGULAR.to_string();
+        u.reason = Reason::UnresolvedSingularPoint;
     }
     None
 }
@@ -179,7 +179,7 @@ pub(crate) fn singular_points_near(
     let mut seen = std::collections::HashSet::new();
     let mut candidates: Vec<Vec<Rational>> = unresolved
         .iter()
-        .filter(|u| u.reason == NO_REGULAR_MINOR)
+        .filter(|u| u.reason == Reason::NoRegularMinor)
         .take(SINGULAR_BOXES)
         .flat_map(|u| simple_points_near(&u.cell))
         .filter(|p| seen.insert(p.clone()))

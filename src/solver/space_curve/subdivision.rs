@@ -3,8 +3,8 @@
 
 use crate::bernstein::Bernstein;
 use crate::number::{Interval, Number, Precision, Rational};
+use crate::reason::Reason;
 use crate::solver::dyadic::Dyadic;
-use crate::solver::plane_curve::TIME_LIMIT_REASON;
 use crate::solver::space_curve::faces::{
     face_roots, face_slice, to_global, to_global_inward, FaceRoot,
 };
@@ -16,7 +16,7 @@ use crate::solver::space_curve::singular_branches::{
 };
 use crate::solver::space_curve::singular_search::Leaves;
 use crate::solver::space_curve::topology::{SpaceCurve, SpaceUnresolved};
-use crate::solver::space_curve::{BoxVerdict, SpaceCurveOptions, NO_REGULAR_MINOR};
+use crate::solver::space_curve::{BoxVerdict, SpaceCurveOptions};
 use crate::solver::system::{f64_box, split_box, DyadicBoxN};
 use std::collections::HashMap;
 
@@ -51,7 +51,7 @@ pub(crate) enum Settled {
         accurate: bool,
     },
     /// Not decided on this box (why).
-    Open(&'static str),
+    Open(Reason),
 }
 pub(crate) struct Item {
     pub(crate) cell: DyadicBoxN,
@@ -106,14 +106,14 @@ impl Solver<'_> {
             .iter()
             .find_map(|&(i, _)| regular(&minor(i)).map(|(c, b)| (i, c, b)))
         else {
-            return Settled::Open(NO_REGULAR_MINOR);
+            return Settled::Open(Reason::NoRegularMinor);
         };
         let mut crossings = match self.face_crossings(cell, polys, &|_, _| false) {
             Ok(c) => c,
             Err(reason) => return Settled::Open(reason),
         };
         if crossings.len() % 2 == 1 {
-            return Settled::Open("an odd number of face crossings");
+            return Settled::Open(Reason::OddFaceCrossings);
         }
         crossings.sort_by(|a, b| {
             (a.enclosure[i][0] + a.enclosure[i][1])
@@ -123,9 +123,7 @@ impl Solver<'_> {
             .windows(2)
             .any(|w| w[0].enclosure[i][1] >= w[1].enclosure[i][0])
         {
-            return Settled::Open(
-                "two face crossings are not separated along the monotone variable",
-            );
+            return Settled::Open(Reason::CrossingsNotSeparated);
         }
         let (deviations, accurate) =
             self.deviations(cell, &partials, &jac, i, &c, beta, &crossings);
@@ -172,9 +170,7 @@ impl Solver<'_> {
         // Each crossing is the end of exactly one branch: its enclosure lies in the region of
         // the facet where that branch's end is the only point of the curve on the face.
         if crossings.len() != branches.len() {
-            return Settled::Open(
-                "the face crossings do not match the branches from the singular point",
-            );
+            return Settled::Open(Reason::BranchesMismatch);
         }
         let mut used = vec![false; branches.len()];
         let mut order = Vec::with_capacity(branches.len());
@@ -196,11 +192,7 @@ impl Solver<'_> {
                     used[*b] = true;
                     order.push(*b);
                 }
-                _ => {
-                    return Settled::Open(
-                        "the face crossings do not match the branches from the singular point",
-                    )
-                }
+                _ => return Settled::Open(Reason::BranchesMismatch),
             }
         }
         let center = RawCrossing {
@@ -284,7 +276,7 @@ impl Solver<'_> {
         cell: &DyadicBoxN,
         polys: &[Bernstein<Interval>],
         skip: &dyn Fn(usize, bool) -> bool,
-    ) -> Result<Vec<RawCrossing>, &'static str> {
+    ) -> Result<Vec<RawCrossing>, Reason> {
         let n = self.n;
         let mut crossings = Vec::new();
         for axis in 0..n {
@@ -323,9 +315,7 @@ impl Solver<'_> {
                     }
                 };
                 let Some(roots) = roots else {
-                    return Err(
-                        "a face crossing was not isolated (the curve touches a face of the box)",
-                    );
+                    return Err(Reason::FaceCrossing);
                 };
                 for r in roots {
                     let strictly_inside = r
@@ -334,7 +324,7 @@ impl Solver<'_> {
                         .zip(&domain)
                         .all(|(e, d)| d.0.to_f64() < e[0] && e[1] < d.1.to_f64());
                     if !strictly_inside {
-                        return Err("the curve passes through or near an edge of the box");
+                        return Err(Reason::NearBoxEdge);
                     }
                     let a = at.to_f64();
                     let mut enclosure = r.enclosure.clone();
@@ -504,7 +494,7 @@ pub(crate) fn subdivide(
                 leaves.dropped.push(f64_box(&item.cell));
                 out.unresolved.push(SpaceUnresolved {
                     cell: f64_box(&item.cell),
-                    reason: reason.to_string(),
+                    reason: reason.clone(),
                 });
                 continue;
             }
@@ -537,7 +527,7 @@ pub(crate) fn subdivide(
                     }
                     continue;
                 }
-                ("", false)
+                (Reason::ArcsNotWithinTolerance, false)
             }
             Settled::Open(reason) => (reason, true),
         };
@@ -562,14 +552,14 @@ pub(crate) fn subdivide(
         {
             out.unresolved.push(SpaceUnresolved {
                 cell: f64_box(&item.cell),
-                reason: TIME_LIMIT_REASON.to_string(),
+                reason: Reason::TimeLimit,
             });
             continue;
         }
         if item.depth >= opts.max_depth || out.boxes + stack.len() >= opts.max_boxes {
             out.unresolved.push(SpaceUnresolved {
                 cell: f64_box(&item.cell),
-                reason: reason.to_string(),
+                reason,
             });
             continue;
         }
@@ -577,7 +567,7 @@ pub(crate) fn subdivide(
         let Some(children) = split_box(&item.cell, item.polys, &axes) else {
             out.unresolved.push(SpaceUnresolved {
                 cell: f64_box(&item.cell),
-                reason: "the box is at the finest dyadic subdivision".to_string(),
+                reason: Reason::FinestSubdivision,
             });
             continue;
         };

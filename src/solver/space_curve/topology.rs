@@ -3,6 +3,7 @@
 //! unresolved boxes.
 
 use crate::number::{Interval, Number, Rational};
+use crate::reason::Reason;
 use crate::solver::dyadic::Dyadic;
 use crate::solver::precision::Escalations;
 use crate::solver::space_curve::warp::unwarp_exact;
@@ -86,7 +87,7 @@ pub struct SpaceUnresolved {
     #[serde(rename = "box")]
     pub cell: Vec<[f64; 2]>,
     /// Why.
-    pub reason: String,
+    pub reason: Reason,
 }
 /// An exact rational singular point of the curve: `F(p) = 0` and `DF(p)` of rank below `n − 1`,
 /// both checked in exact arithmetic.

@@ -19,8 +19,8 @@ use crate::analysis::visibility::hlr::systems::{
 };
 use crate::analysis::visibility::hlr::HlrOptions;
 use crate::analysis::visibility::scene::Scene;
+use crate::reason::Reason;
 use crate::solver::dyadic::Dyadic;
-use crate::solver::plane_curve::TIME_LIMIT_REASON;
 use crate::solver::system::{solve_system_excluding, DyadicBoxN, SystemRoots};
 use rayon::prelude::*;
 use std::collections::BTreeSet;
@@ -49,20 +49,13 @@ pub(super) fn crossings(
     // The silhouette regions the curve solver left unresolved are not segments: their
     // crossings with the other lines are not searched, so every segment whose image can meet
     // theirs is unresolved along its whole length.
-    let mut blockers: Vec<(usize, DyadicBoxN, String)> = Vec::new();
-    for (i, cell, _) in &sil.unresolved {
+    for (p, cell, _) in &sil.unresolved {
         let b = vec![(cell.lo[0], cell.hi[0]), (cell.lo[1], cell.hi[1])];
-        blockers.push((
-            *i,
-            b,
-            format!("its image may cross the silhouette of patch {i} where the curve solver left it unresolved"),
-        ));
-    }
-    for (p, b, why) in &blockers {
-        let bounds = bounds_on(&scene.images[*p], b);
+        let bounds = bounds_on(&scene.images[*p], &b);
         for (k, sg) in segments.iter().enumerate() {
             if sg.bounds.meets_image(&bounds) {
-                events[k].push(Event::unresolved(sg.range, why.clone()));
+                let why = Reason::SilhouetteUnresolved { patch: *p };
+                events[k].push(Event::unresolved(sg.range, why));
             }
         }
     }
@@ -85,10 +78,7 @@ pub(super) fn crossings(
             (None, _) if !roles.outline[a] => {}
             (None, _) => jobs.push(Job::SelfCrossing(a)),
             (Some(_), Some(_)) => {}
-            (Some(_), None) => events[a].push(Event::unresolved(
-                sa.range,
-                "its image is not proven free of self-crossings (a cusp of the outline?)".into(),
-            )),
+            (Some(_), None) => events[a].push(Event::unresolved(sa.range, Reason::OutlineCusp)),
         }
         for (b, sb) in segments.iter().enumerate().skip(a + 1) {
             if !sa.bounds.meets_image(&sb.bounds) {
@@ -185,24 +175,20 @@ pub(super) fn crossings(
         }
         stats.excluded_vertices += exclude.len();
         // Which variables are each segment's parameter, and what an unresolved box means.
-        let (targets, why): (Vec<(usize, usize)>, String) = match *job {
+        let (targets, why): (Vec<(usize, usize)>, Reason) = match *job {
             Job::Pair(a, b) => {
                 let na = segments[a].domain.len();
                 (
                     vec![(a, segments[a].axis), (b, na + segments[b].axis)],
-                    format!(
-                        "where it crosses a line of patch {} (or patch {}) is not isolated",
-                        segments[b].patch, segments[a].patch
-                    ),
+                    Reason::CrossingNotIsolated {
+                        patches: [segments[b].patch, segments[a].patch],
+                    },
                 )
             }
-            Job::SelfCrossing(a) => (
-                vec![(a, 0), (a, 1)],
-                "where its image crosses itself is not isolated".into(),
-            ),
+            Job::SelfCrossing(a) => (vec![(a, 0), (a, 1)], Reason::SelfCrossingNotIsolated),
             Job::Penetration(a, j) => (
                 vec![(a, segments[a].axis)],
-                format!("where it may pass through patch {j} is not isolated"),
+                Reason::PenetrationNotIsolated { patch: j },
             ),
         };
         // A crossing cuts a segment only if the other segment can change its QI there.
@@ -227,11 +213,7 @@ pub(super) fn crossings(
                 }
             }
         }
-        let why = if *timed_out {
-            TIME_LIMIT_REASON.to_string()
-        } else {
-            why
-        };
+        let why = if *timed_out { Reason::TimeLimit } else { why };
         for bx in &r.unresolved {
             for &(s, k) in &targets {
                 if counts(bx, s) {
@@ -287,7 +269,7 @@ fn job_domain(segments: &[Segment], job: Job) -> DyadicBoxN {
 #[derive(Clone, Debug)]
 pub(super) struct Event {
     pub(super) at: [f64; 2],
-    pub(super) unresolved: Option<String>,
+    pub(super) unresolved: Option<Reason>,
 }
 
 impl Event {
@@ -297,7 +279,7 @@ impl Event {
             unresolved: None,
         }
     }
-    pub(super) fn unresolved(at: [f64; 2], why: String) -> Event {
+    pub(super) fn unresolved(at: [f64; 2], why: Reason) -> Event {
         Event {
             at,
             unresolved: Some(why),

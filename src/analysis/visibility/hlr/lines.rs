@@ -386,10 +386,10 @@ fn silhouette_segments(
                     order += 1; // not consecutive across the gap
                     continue;
                 };
-                let axis = match arc.reason {
-                    "graph over u" => 0,
-                    "graph over v" => 1,
-                    _ => {
+                // The arc's parameter: the axis it is a graph over.
+                let axis = match arc.kind.monotone_axis() {
+                    Some(m) => 1 - m,
+                    None => {
                         // Along a side: drawn as the boundary.
                         order += 1;
                         continue;

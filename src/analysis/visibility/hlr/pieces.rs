@@ -17,7 +17,7 @@ use crate::analysis::visibility::ray::{fix_axis, layers, Sample};
 use crate::analysis::visibility::scene::Scene;
 use crate::model::Model;
 use crate::number::Rational;
-use crate::solver::plane_curve::TIME_LIMIT_REASON;
+use crate::reason::Reason;
 use crate::solver::precision::{Escalations, Ladder};
 use crate::solver::univariate::{isolate_roots_in, refine_root, Root};
 use crate::surface::DrawPatch;
@@ -90,7 +90,7 @@ pub(crate) struct Stretch {
     pub(crate) param: [f64; 2],
     pub(crate) from: PieceEnd,
     pub(crate) to: PieceEnd,
-    pub(crate) qi: Result<usize, String>,
+    pub(crate) qi: Result<usize, Reason>,
     pub(crate) behind: Option<Behind>,
 }
 /// The pieces of a segment between its events, with their QI, drawn (to `opts.tol` with
@@ -243,9 +243,9 @@ pub(crate) fn draw_piece(
     };
     if let (Some(tol), None, None) = (opts.tol, error_bound, &reason) {
         reason = Some(if opts.curve.past_deadline() {
-            TIME_LIMIT_REASON.to_string()
+            Reason::TimeLimit
         } else {
-            format!("its drawing is not proven within the tolerance {tol:e}")
+            Reason::DrawingTolerance { tol }
         });
     }
     HlrPiece {
@@ -282,12 +282,12 @@ pub(crate) fn qi_of(
     behind: bool,
     opts: &HlrOptions,
     tally: &mut SampleTally,
-) -> Result<(usize, Option<Behind>), String> {
+) -> Result<(usize, Option<Behind>), Reason> {
     if opts.curve.past_deadline() {
-        return Err(TIME_LIMIT_REASON.to_string());
+        return Err(Reason::TimeLimit);
     }
     let w = p1 - p0;
-    let mut last = String::from("no sample point found in the piece");
+    let mut last = Reason::NoSample;
     for (a, b) in [(0.25, 0.75), (0.1, 0.3), (0.7, 0.9)] {
         let Some(c) = dyadic_between(p0 + a * w, p0 + b * w) else {
             continue;

@@ -3,6 +3,7 @@
 
 use crate::analysis::visibility::facing::Facing;
 use crate::analysis::visibility::ray::Hit;
+use crate::reason::Reason;
 use crate::solver::precision::Escalations;
 use crate::surface::Edge;
 
@@ -34,7 +35,7 @@ pub struct HlrPiece {
     pub certified: bool,
     /// Why not, if not.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub reason: Option<String>,
+    pub reason: Option<Reason>,
     /// With a tolerance: a proven bound on the Hausdorff distance in space between the drawn
     /// polyline and the true piece (`None`: not asked, or not proven within the tolerance).
     pub error_bound: Option<f64>,
@@ -59,7 +60,7 @@ pub struct Behind {
     pub uv: [[f64; 2]; 2],
     /// The first point of the model behind the sample (`None`: nothing, the background), or
     /// why it is not proven.
-    pub first: Result<Option<Hit>, String>,
+    pub first: Result<Option<Hit>, Reason>,
 }
 /// Counts of the work done.
 #[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]

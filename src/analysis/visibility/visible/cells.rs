@@ -13,6 +13,7 @@ use crate::analysis::visibility::visible::VisibleOptions;
 use crate::bernstein::Bernstein;
 use crate::number::Interval;
 use crate::number::{Precision, Rational, Sign};
+use crate::reason::Reason;
 use std::cell::OnceCell;
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
@@ -26,7 +27,7 @@ pub(super) struct Leaf {
     pub(super) i: u32,
     pub(super) j: u32,
     /// `None`: quiet; otherwise why not.
-    pub(super) blocked: Option<String>,
+    pub(super) blocked: Option<Reason>,
 }
 
 impl Leaf {
@@ -134,16 +135,14 @@ fn visit<'a>(
     cands: Vec<Cand<'a>>,
     out: &mut Vec<Leaf>,
 ) {
-    let leaf = |blocked: Option<String>| Leaf {
+    let leaf = |blocked: Option<Reason>| Leaf {
         level,
         i,
         j,
         blocked,
     };
     if ctx.opts.curve.past_deadline() {
-        out.push(leaf(Some(
-            crate::solver::plane_curve::TIME_LIMIT_REASON.to_string(),
-        )));
+        out.push(leaf(Some(Reason::TimeLimit)));
         return;
     }
     let split = level < ctx.opts.max_depth;
@@ -170,9 +169,7 @@ fn visit<'a>(
         if split {
             recurse(cands, out);
         } else {
-            out.push(leaf(Some(
-                "the patch's own silhouette may pass through it".into(),
-            )));
+            out.push(leaf(Some(Reason::OwnSilhouette)));
         }
         return;
     }
@@ -180,7 +177,7 @@ fn visit<'a>(
         if split {
             recurse(cands, out);
         } else {
-            out.push(leaf(Some("its image is not bounded".into())));
+            out.push(leaf(Some(Reason::ImageUnbounded)));
         }
         return;
     };
@@ -205,17 +202,12 @@ fn visit<'a>(
 }
 
 /// Why a node blocks a cell.
-fn reason(t: &Tree) -> String {
+fn reason(t: &Tree) -> Reason {
+    let patch = t.patch;
     match &t.kind {
-        TreeKind::Contour { .. } => format!(
-            "the silhouette of patch {} may pass in front of it",
-            t.patch
-        ),
-        TreeKind::Side { edge, .. } => format!(
-            "the boundary of patch {} (side {:?}) may pass in front of it",
-            t.patch, edge
-        ),
-        TreeKind::Region => format!("patch {} may pass through it", t.patch),
+        TreeKind::Contour { .. } => Reason::SilhouetteInFront { patch },
+        TreeKind::Side { edge, .. } => Reason::BoundaryInFront { patch, edge: *edge },
+        TreeKind::Region => Reason::PatchThrough { patch },
     }
 }
 

@@ -42,7 +42,7 @@ use crate::analysis::visibility::scene::Scene;
 use crate::error::Error;
 use crate::model::{Model, WeldTolerance};
 use crate::number::{Precision, Rational};
-use crate::solver::plane_curve::TIME_LIMIT_REASON;
+use crate::reason::Reason;
 use crate::solver::precision::{Escalations, Policy};
 use crate::solver::CurveOptions;
 use crate::surface::DrawPatch;
@@ -122,7 +122,7 @@ pub struct Cell {
     pub qi: Option<usize>,
     /// Why the QI is not proven.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub reason: Option<String>,
+    pub reason: Option<Reason>,
 }
 
 /// A closed loop in a patch's square (first point not repeated), with the same points in
@@ -141,7 +141,7 @@ pub struct Loop {
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct UnresolvedArea {
     /// Why.
-    pub reason: String,
+    pub reason: Reason,
     /// How many cells.
     pub cells: usize,
     /// Their share of the parameter square.
@@ -432,15 +432,16 @@ fn patch_region(
         quiet_regions: regions.len(),
         ..VisibleStats::default()
     };
-    let mut qi: Vec<Result<usize, String>> = leaves
+    // Every quiet leaf is in a region, whose ray tests set its QI below.
+    let mut qi: Vec<Result<usize, Reason>> = leaves
         .iter()
-        .map(|l| Err(l.blocked.clone().unwrap_or_default()))
+        .map(|l| Err(l.blocked.clone().unwrap_or(Reason::NoRayTest)))
         .collect();
     for members in regions.values() {
         // The coarsest leaves first: their centres lie farthest from the region's edge.
         let mut order = members.clone();
         order.sort_by_key(|&k| (leaves[k].level, k));
-        let mut result = Err("no ray test was tried in its quiet region".to_string());
+        let mut result = Err(Reason::NoRayTest);
         let mut tries = 0;
         'tries: for &k in &order {
             for uv in sample_points(&leaves[k]) {
@@ -448,7 +449,7 @@ fn patch_region(
                     break 'tries;
                 }
                 if opts.curve.past_deadline() {
-                    result = Err(TIME_LIMIT_REASON.to_string());
+                    result = Err(Reason::TimeLimit);
                     break 'tries;
                 }
                 tries += 1;
@@ -460,7 +461,7 @@ fn patch_region(
                     }
                     Err(e) => {
                         stats.refused_ray_tests += 1;
-                        result = Err(format!("no ray test was proven in its quiet region: {e}"));
+                        result = Err(Reason::RayTestsFailed(Box::new(e)));
                     }
                 }
             }
@@ -483,7 +484,8 @@ fn patch_region(
     let mut counts = [0usize; 3];
     let mut dom = [0.0f64; 3];
     let mut sums = [[0.0f64; 2]; 3];
-    let mut reasons: BTreeMap<String, (usize, f64)> = BTreeMap::new();
+    // Grouped by their sentences, in the order of the sentences.
+    let mut reasons: BTreeMap<String, (Reason, usize, f64)> = BTreeMap::new();
     for (l, q) in leaves.iter().zip(&qi) {
         let kind = match q {
             Ok(0) => 0,
@@ -497,9 +499,11 @@ fn patch_region(
         sums[kind][0] += a[0];
         sums[kind][1] += a[1];
         if let Err(why) = q {
-            let e = reasons.entry(why.clone()).or_default();
-            e.0 += 1;
-            e.1 += d;
+            let e = reasons
+                .entry(why.to_string())
+                .or_insert_with(|| (why.clone(), 0, 0.0));
+            e.1 += 1;
+            e.2 += d;
         }
         cells.push(Cell {
             lo: l.lo(),
@@ -560,7 +564,7 @@ fn patch_region(
         counts,
         unresolved: reasons
             .into_iter()
-            .map(|(reason, (cells, d))| UnresolvedArea {
+            .map(|(_, (reason, cells, d))| UnresolvedArea {
                 reason,
                 cells,
                 domain_fraction: d,

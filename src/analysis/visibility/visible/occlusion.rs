@@ -28,6 +28,7 @@ use crate::analysis::visibility::sheets::range_on;
 use crate::bernstein::Bernstein;
 use crate::model::Model;
 use crate::number::{Interval, Number, Precision};
+use crate::reason::Reason;
 use crate::solver::system::inverse;
 use crate::surface::DrawPatch;
 use crate::surface::{Edge, RationalPatch};
@@ -196,7 +197,7 @@ pub struct OcclusionRun {
     pub error_bound: Option<f64>,
     /// Why it is not certified, if it is not.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub reason: Option<String>,
+    pub reason: Option<Reason>,
 }
 
 /// A vertex of a lift: a point of the piece's drawn polyline and its lift.
@@ -231,7 +232,7 @@ struct Run {
     start: Option<usize>,
     end: Option<usize>,
     /// Why the run is not certified, found while following it.
-    reason: Option<String>,
+    reason: Option<Reason>,
 }
 
 /// A lift followed from a start vertex in one direction.
@@ -411,9 +412,7 @@ impl Lifting<'_> {
                 let a = *run.vertices.last().expect("a vertex");
                 let p = run.patch;
                 let Some(wb) = self.lift(p, xb, a.w) else {
-                    run.reason = Some(format!(
-                        "the lift onto patch {p} is lost (Newton's method does not converge)"
-                    ));
+                    run.reason = Some(Reason::LiftLost { patch: p });
                     return walk;
                 };
                 if inside(wb) {
@@ -441,15 +440,13 @@ impl Lifting<'_> {
                         run.vertices.push(Vertex { x: xb, w: wb });
                         break;
                     }
-                    run.reason = Some(format!(
-                        "the lift leaves patch {p} across its side {edge:?}, not an edge shared by exactly two patches"
-                    ));
+                    run.reason = Some(Reason::LiftLeaves { patch: p, edge });
                     return walk;
                 };
                 let t2 = if rev { 1.0 - t } else { t };
                 let x_star = lerp(a.x, xb, lo);
                 let Some(w2) = self.lift(p2, x_star, side_point_f64(e2, t2)) else {
-                    run.reason = Some(format!("the lift is lost where it crosses to patch {p2}"));
+                    run.reason = Some(Reason::LiftLostTo { patch: p2 });
                     return walk;
                 };
                 // A window around the crossing, within the chord, wide enough that the lifts
@@ -486,9 +483,7 @@ impl Lifting<'_> {
                     delta *= 2.0;
                 };
                 let Some((l0, l1, xs, w_from, w_to)) = found else {
-                    run.reason = Some(format!(
-                        "the lift is lost where it crosses from patch {p} to patch {p2}"
-                    ));
+                    run.reason = Some(Reason::LiftLostAcross { patches: [p, p2] });
                     return walk;
                 };
                 let k = walk.windows.len();
@@ -952,9 +947,9 @@ impl Lifting<'_> {
         e: Option<f64>,
         tol: Option<f64>,
         anchor: &Anchor,
-    ) -> Result<Vec<OcclusionRun>, String> {
+    ) -> Result<Vec<OcclusionRun>, Reason> {
         if points.len() < 2 {
-            return Err("the piece has fewer than two drawn points".into());
+            return Err(Reason::TooFewPoints);
         }
         // The drawn vertex nearest the sample, lifted from the point behind it.
         let s = anchor.sample;
@@ -967,7 +962,7 @@ impl Lifting<'_> {
         let h = anchor.uv.map(|r| 0.5 * (r[0] + r[1]));
         let w0 = self
             .lift(anchor.patch, points[k0], h)
-            .ok_or("the lift from the point behind the sample does not converge")?;
+            .ok_or(Reason::LiftFromSample)?;
         let back: Vec<[f64; 3]> = points[..=k0].iter().rev().copied().collect();
         let e0 = e.unwrap_or(0.0);
         let walk = self
@@ -988,7 +983,7 @@ impl Lifting<'_> {
         let first_reason = walk.runs.iter().find_map(|r| r.reason.clone());
         let proof = match (e.zip(tol), first_reason) {
             (_, Some(why)) => Err(why),
-            (None, None) => Err("the piece's drawing is not bounded (no tolerance)".into()),
+            (None, None) => Err(Reason::DrawingUnbounded),
             (Some((e, tol)), None) => self.prove(&walk, [e, 0.999 * tol], anchor),
         };
         match proof {
@@ -999,7 +994,7 @@ impl Lifting<'_> {
                     let Some(r) = self.draws[run.patch].rounding() else {
                         split.push(OcclusionRun {
                             uv,
-                            reason: Some("the drawn points' rounding is not bounded".into()),
+                            reason: Some(Reason::RoundingUnbounded),
                             ..run.clone()
                         });
                         continue;
@@ -1026,14 +1021,11 @@ impl Lifting<'_> {
                             .try_fold(0.0f64, |acc, b| Some(acc.max((*b)?)));
                         let reason = match (c, bound) {
                             (0, _) => None,
-                            (1, Some(b)) => Some(format!(
-                                "proven within {b:.2e} only, more than the tolerance (near a fold of patch {}, the lift magnifies the drawing error of the piece in front)",
-                                run.patch
-                            )),
-                            _ => Some(format!(
-                                "a stretch of the occlusion curve on patch {} is not proven (near a fold of the patch, where the lift is not unique, or not joined to the sample through proven stretches)",
-                                run.patch
-                            )),
+                            (1, Some(b)) => Some(Reason::BoundAboveTolerance {
+                                bound: b,
+                                patch: run.patch,
+                            }),
+                            _ => Some(Reason::OcclusionStretch { patch: run.patch }),
                         };
                         split.push(OcclusionRun {
                             patch: run.patch,
@@ -1071,7 +1063,7 @@ impl Lifting<'_> {
         walk: &Walk,
         [e, target]: [f64; 2],
         anchor: &Anchor,
-    ) -> Result<Vec<ProvenRun>, String> {
+    ) -> Result<Vec<ProvenRun>, Reason> {
         let mut proven: Vec<Proven> = Vec::new();
         let windows: Vec<Option<[f64; 2]>> = walk
             .windows
@@ -1148,9 +1140,7 @@ impl Lifting<'_> {
                 bounds.push(windows[k].map(|b| b[0]));
             }
             if bounds.len() + 1 != refined.len() {
-                return Err(format!(
-                    "the occlusion curve's chords on patch {p} do not match its points"
-                ));
+                return Err(Reason::ChordsMismatch { patch: p });
             }
             bounds_all.extend(bounds.iter().copied());
             out.push((refined.iter().map(|v| clamp(v.w)).collect(), bounds));
@@ -1170,14 +1160,14 @@ impl Lifting<'_> {
             .filter(|c| c.chord != usize::MAX && boxes_meet(&c.space, &anchor.sample))
             .collect();
         if holders.is_empty() {
-            return Err("the sample is not within the piece's proven drawing".into());
+            return Err(Reason::SampleOutsideDrawing);
         }
         let anchored = holders.iter().all(|c| {
             c.patch == anchor.patch
                 && (0..2).all(|k| c.w[k][0] <= anchor.uv[k][0] && anchor.uv[k][1] <= c.w[k][1])
         });
         if !anchored {
-            return Err("the point behind the sample is not proven on the lifted sheet".into());
+            return Err(Reason::NotOnLiftedSheet);
         }
         // From the anchor's chords along proven chords both ways: the rest is not joined.
         let mut joined = vec![false; bounds_all.len()];

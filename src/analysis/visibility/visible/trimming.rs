@@ -16,6 +16,7 @@ use crate::analysis::visibility::scene::Scene;
 use crate::analysis::visibility::visible::occlusion::{Anchor, Lifting};
 use crate::model::Model;
 use crate::number::Rational;
+use crate::reason::Reason;
 use crate::surface::DrawPatch;
 use crate::surface::Edge;
 use rayon::prelude::*;
@@ -57,7 +58,7 @@ pub struct TrimCurve {
     pub certified: bool,
     /// Why not, if not.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub reason: Option<String>,
+    pub reason: Option<Reason>,
 }
 
 /// A chain of trimming curves, end to end.
@@ -80,7 +81,7 @@ pub struct MissingOcclusion {
     /// can be as short as `2⁻²⁴`, next to a junction where it is not).
     pub param: [f64; 2],
     /// Why.
-    pub reason: String,
+    pub reason: Reason,
 }
 
 /// The trimming curves of every patch, and the occlusion curves that are missing.
@@ -139,9 +140,10 @@ fn side_curves(
                 Ok(0) => {}
                 Ok(_) => continue,
                 Err(why) => {
-                    reason.get_or_insert(format!(
-                        "whether patch {p} is visible next to this side is not proven: {why}"
-                    ));
+                    reason.get_or_insert(Reason::SideVisibility {
+                        patch: p,
+                        why: Box::new(why),
+                    });
                 }
             }
         }
@@ -204,97 +206,107 @@ pub(crate) fn trimming_curves(
         .par_iter()
         .filter(|p| p.qi.is_none() && p.outline != Some(false))
         .map(|piece| {
-            let why = piece.reason.clone().unwrap_or_default();
+            // A piece without a QI always has its reason.
+            let why = piece.reason.clone().unwrap_or(Reason::Unknown);
             let m = MissingOcclusion {
                 patch: piece.patch,
                 kind: piece.kind,
                 param: piece.param,
-                reason: format!("its visibility is not proven ({why}): if visible, its occlusion curve and the trimming curve it is are missing"),
+                reason: Reason::VisibilityUnproven(Box::new(why)),
             };
             (Vec::new(), Some(m))
         })
-        .chain(hlr.pieces.par_iter().filter(|p| p.qi == Some(0)).map(|piece| {
-            let mut curves = Vec::new();
-            match (piece.kind, piece.edge) {
-                (LineKind::Boundary, Some(edge)) => {
-                    curves.extend(side_curves(scene, draws, piece, edge, ray));
-                }
-                _ => curves.push((
-                    piece.patch,
-                    TrimCurve {
-                        kind: TrimKind::Silhouette,
-                        source_patch: piece.patch,
-                        source_kind: piece.kind,
-                        source_edge: piece.edge,
-                        uv: piece.points_uv.iter().map(|&(_, u, v)| [u, v]).collect(),
-                        xyz: piece.points.clone(),
-                        error_bound: piece.error_bound,
-                        certified: piece.certified,
-                        reason: piece.reason.clone(),
-                    },
-                )),
-            }
-            let missing = |reason: String| {
-                Some(MissingOcclusion {
-                    patch: piece.patch,
-                    kind: piece.kind,
-                    param: piece.param,
-                    reason,
-                })
-            };
-            let mut lost = None;
-            let degenerate = piece
-                .points
-                .iter()
-                .all(|x| (0..3).all(|k| (x[k] - piece.points[0][k]).abs() <= 1e-12));
-            if piece.outline.is_none() {
-                lost = missing("whether the surface continues across it is not proven".into());
-            } else if piece.outline == Some(true) && !degenerate {
-                match piece.behind.as_ref().map(|b| (b, &b.first)) {
-                    None => lost = missing("nothing behind it was looked for".into()),
-                    Some((_, Err(why))) => lost = missing(why.clone()),
-                    Some((_, Ok(None))) => {}
-                    Some((b, Ok(Some(hit)))) => {
-                        let lo = [b.uv[0][0], b.uv[1][0]];
-                        let hi = [b.uv[0][1], b.uv[1][1]];
-                        let sample = lifts[b.patch].space_box(lo, hi);
-                        let anchor = sample.map(|sample| Anchor {
-                            patch: hit.patch,
-                            uv: hit.uv,
-                            sample,
-                        });
-                        let runs = anchor
-                            .ok_or_else(|| "the sample's point is not enclosed".to_string())
-                            .and_then(|a| {
-                                lifting.occlusion_curve(&piece.points, piece.error_bound, tol, &a)
-                            });
-                        match runs {
-                            Err(why) => lost = missing(why),
-                            Ok(runs) => {
-                                for r in runs {
-                                    let reason = r.reason.or_else(|| piece.reason.clone());
-                                    curves.push((
-                                        r.patch,
-                                        TrimCurve {
-                                            kind: TrimKind::Occlusion,
-                                            source_patch: piece.patch,
-                                            source_kind: piece.kind,
-                                            source_edge: piece.edge,
-                                            uv: r.uv,
-                                            xyz: r.xyz,
-                                            error_bound: r.error_bound,
-                                            certified: reason.is_none() && r.error_bound.is_some(),
-                                            reason,
-                                        },
-                                    ));
+        .chain(
+            hlr.pieces
+                .par_iter()
+                .filter(|p| p.qi == Some(0))
+                .map(|piece| {
+                    let mut curves = Vec::new();
+                    match (piece.kind, piece.edge) {
+                        (LineKind::Boundary, Some(edge)) => {
+                            curves.extend(side_curves(scene, draws, piece, edge, ray));
+                        }
+                        _ => curves.push((
+                            piece.patch,
+                            TrimCurve {
+                                kind: TrimKind::Silhouette,
+                                source_patch: piece.patch,
+                                source_kind: piece.kind,
+                                source_edge: piece.edge,
+                                uv: piece.points_uv.iter().map(|&(_, u, v)| [u, v]).collect(),
+                                xyz: piece.points.clone(),
+                                error_bound: piece.error_bound,
+                                certified: piece.certified,
+                                reason: piece.reason.clone(),
+                            },
+                        )),
+                    }
+                    let missing = |reason: Reason| {
+                        Some(MissingOcclusion {
+                            patch: piece.patch,
+                            kind: piece.kind,
+                            param: piece.param,
+                            reason,
+                        })
+                    };
+                    let mut lost = None;
+                    let degenerate = piece
+                        .points
+                        .iter()
+                        .all(|x| (0..3).all(|k| (x[k] - piece.points[0][k]).abs() <= 1e-12));
+                    if piece.outline.is_none() {
+                        lost = missing(Reason::ContinuationUnproven);
+                    } else if piece.outline == Some(true) && !degenerate {
+                        match piece.behind.as_ref().map(|b| (b, &b.first)) {
+                            None => lost = missing(Reason::NothingBehind),
+                            Some((_, Err(why))) => lost = missing(why.clone()),
+                            Some((_, Ok(None))) => {}
+                            Some((b, Ok(Some(hit)))) => {
+                                let lo = [b.uv[0][0], b.uv[1][0]];
+                                let hi = [b.uv[0][1], b.uv[1][1]];
+                                let sample = lifts[b.patch].space_box(lo, hi);
+                                let anchor = sample.map(|sample| Anchor {
+                                    patch: hit.patch,
+                                    uv: hit.uv,
+                                    sample,
+                                });
+                                let runs = anchor.ok_or(Reason::SampleNotEnclosed).and_then(|a| {
+                                    lifting.occlusion_curve(
+                                        &piece.points,
+                                        piece.error_bound,
+                                        tol,
+                                        &a,
+                                    )
+                                });
+                                match runs {
+                                    Err(why) => lost = missing(why),
+                                    Ok(runs) => {
+                                        for r in runs {
+                                            let reason = r.reason.or_else(|| piece.reason.clone());
+                                            curves.push((
+                                                r.patch,
+                                                TrimCurve {
+                                                    kind: TrimKind::Occlusion,
+                                                    source_patch: piece.patch,
+                                                    source_kind: piece.kind,
+                                                    source_edge: piece.edge,
+                                                    uv: r.uv,
+                                                    xyz: r.xyz,
+                                                    error_bound: r.error_bound,
+                                                    certified: reason.is_none()
+                                                        && r.error_bound.is_some(),
+                                                    reason,
+                                                },
+                                            ));
+                                        }
+                                    }
                                 }
                             }
                         }
                     }
-                }
-            }
-            (curves, lost)
-        }))
+                    (curves, lost)
+                }),
+        )
         .collect();
     let mut curves: Vec<Vec<TrimCurve>> = vec![Vec::new(); n];
     let mut missing = Vec::new();
@@ -357,9 +369,7 @@ fn join_at_poles(draw: &DrawPatch, p: usize, curves: &mut Vec<TrimCurve>) {
                 xyz: vec![at, at],
                 error_bound: None,
                 certified: false,
-                reason: Some(
-                    "joins two curves along a side collapsed to a point (a pole), whose visibility is not proven".into(),
-                ),
+                reason: Some(Reason::PoleJoin),
             });
         }
     }
