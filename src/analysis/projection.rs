@@ -18,6 +18,7 @@
 use crate::analysis::view::View;
 use crate::bernstein::Bernstein;
 use crate::model::Model;
+use crate::number::margin;
 use crate::number::{Interval, Number, Precision, Rational};
 use crate::surface::{Edge, RationalPatch};
 
@@ -263,7 +264,8 @@ impl Projection {
             let s = v
                 .iter()
                 .fold(Interval::point(0.0), |acc, x| acc.add(&x.mul(x)));
-            s.hi().sqrt() * (1.0 + 1e-12)
+            // One rounding: the square root (`proofs/rounding-margins.md`).
+            margin::up(s.hi().sqrt(), margin::FEW)
         };
         match &self.view {
             View::Direction(_) => {

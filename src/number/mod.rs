@@ -21,6 +21,7 @@
 mod bigrational;
 mod float;
 mod interval;
+pub mod margin;
 mod mpfr_float;
 mod mpfr_interval;
 mod parse;

@@ -21,6 +21,7 @@ use crate::analysis::chords::plane_curve::{div, range_enclosing, restrict_enclos
 use crate::analysis::chords::space_curve::deflate_common;
 use crate::analysis::projection::lift;
 use crate::bernstein::Bernstein;
+use crate::number::margin;
 use crate::number::{Interval, Number, Precision, Rational};
 use crate::surface::RationalPatch;
 
@@ -309,7 +310,10 @@ fn sector_excluded(g: &[Interval; 7], along_v: bool, sigma: Interval) -> bool {
     } else {
         Interval::new(
             0.0,
-            sigma.lo().abs().max(sigma.hi().abs()).powi(2) * (1.0 + 1e-15),
+            margin::up(
+                sigma.lo().abs().max(sigma.hi().abs()).powi(2),
+                margin::TIGHT,
+            ),
         )
     };
     let s3 = s2.mul(&sigma);

@@ -2,6 +2,7 @@
 //! world-space tolerance of the true curve (`proofs/chord-accuracy.md`).
 
 use crate::bernstein::Bernstein;
+use crate::number::margin;
 use crate::number::{Interval, Number, Precision, Rational, Sign};
 use crate::solver::plane_curve::Arc;
 use crate::surface::RationalPatch;
@@ -22,8 +23,8 @@ fn mag(x: Interval) -> f64 {
 /// An upper bound of the Euclidean norm of a vector of intervals.
 fn norm(v: &[Interval; 3]) -> f64 {
     let s: f64 = v.iter().map(|x| mag(*x) * mag(*x)).sum();
-    // sqrt and the sum are rounded to nearest: a relative margin covers them.
-    s.sqrt() * (1.0 + 1e-12)
+    // Six roundings (three squares, two sums, the root): `proofs/rounding-margins.md`.
+    margin::up(s.sqrt(), margin::FEW)
 }
 
 /// Interval data of one patch and its silhouette function, for accuracy bounds.
@@ -434,7 +435,7 @@ impl PatchAccuracy {
             return fail(p0, p1);
         };
         let end_piece =
-            |b: [[f64; 2]; 2]| l_m.max(l_o) * (end_delta(b) + half(b, o)) * (1.0 + 1e-9);
+            |b: [[f64; 2]; 2]| margin::up(l_m.max(l_o) * (end_delta(b) + half(b, o)), margin::MANY);
         let worst = end_piece(from).max(end_piece(to));
         if worst > tol {
             return fail(p0, p1);
@@ -461,7 +462,7 @@ impl PatchAccuracy {
             let mut hi = [0.0; 2];
             lo[o] = b[0][o];
             hi[o] = b[1][o];
-            let r = v.2 * (1.0 + 1e-9);
+            let r = margin::up(v.2, margin::MANY);
             lo[m] = Interval::point(v.1)
                 .sub(&Interval::point(r))
                 .lo()
@@ -554,11 +555,12 @@ impl Tracer<'_> {
         };
         if h == 0.0 {
             // Coincident levels: only the vertex errors count.
-            return l_m * a.2.max(b.2) * (1.0 + 1e-9);
+            return margin::up(l_m * a.2.max(b.2), margin::MANY);
         }
         let e = l_m * (h * h / 8.0 * phi2 + a.2.max(b.2))
             + h * h / 8.0 * (s_mm * slope * slope + 2.0 * s_mo * slope + s_oo);
-        e * (1.0 + 1e-9)
+        // About twenty roundings (`proofs/rounding-margins.md`).
+        margin::up(e, margin::MANY)
     }
 
     /// Bounds over the box of the arc piece between vertices a and b, which stays within
@@ -593,7 +595,7 @@ impl Tracer<'_> {
     fn piece_box(&self, a: Vertex, b: Vertex, phi1: f64) -> [[f64; 2]; 2] {
         let (m, o) = (self.m, 1 - self.m);
         let h = (b.0 - a.0).abs();
-        let reach = (a.2.max(b.2) + phi1 * h) * (1.0 + 1e-9);
+        let reach = margin::up(a.2.max(b.2) + phi1 * h, margin::MANY);
         let (mut lo, mut hi) = (self.blo, self.bhi);
         lo[o] = a.0.min(b.0).max(self.blo[o]);
         hi[o] = a.0.max(b.0).min(self.bhi[o]);

@@ -5,6 +5,7 @@
 
 use crate::analysis::chords::plane_curve::{restrict_enclosing, SurfaceBounds};
 use crate::bernstein::Bernstein;
+use crate::number::margin;
 use crate::number::{Interval, Number, Precision, Rational};
 use crate::solver::space_curve::{SpaceArc, SpaceCurve};
 use crate::surface::RationalPatch;
@@ -15,7 +16,10 @@ use crate::surface::RationalPatch;
 fn warp_bounds(l: f64) -> (f64, f64) {
     let first = l.max(1.0 / l);
     let second = 2.0 * l * (l - 1.0).abs() / l.min(1.0).powi(3);
-    (first * (1.0 + 1e-12), second * (1.0 + 1e-12))
+    (
+        margin::up(first, margin::FEW),
+        margin::up(second, margin::FEW),
+    )
 }
 
 /// Bounds of a patch's derivatives over its square (its variables `(u, v)` warped by the
@@ -78,8 +82,8 @@ impl Accuracy {
             + 2.0 * self.s2[1] * delta[0] * delta[1]
             + self.s2[2] * delta[1] * delta[1])
             / 8.0;
-        // A relative margin for the rounding of this sum.
-        e * (1.0 + 1e-9)
+        // The rounding of this sum: a few dozen operations (`proofs/rounding-margins.md`).
+        margin::up(e, margin::MANY)
     }
 }
 

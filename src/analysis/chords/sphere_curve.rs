@@ -5,6 +5,7 @@
 //!
 //! Angles are between lines: `angle(x, y) = acos(|x·y| / (|x| |y|))`, in `[0, π/2]`.
 
+use crate::number::margin;
 use crate::number::{Interval, Number};
 
 /// The largest angle, between two lines, that [`piece_error`] accepts for its cone: below
@@ -27,7 +28,7 @@ fn asin_up(s: f64) -> f64 {
     if s.is_nan() || s >= 1.0 {
         return std::f64::consts::FRAC_PI_2;
     }
-    (s.max(0.0).asin() * (1.0 + 1e-12)).min(std::f64::consts::FRAC_PI_2)
+    margin::up(s.max(0.0).asin(), margin::FEW).min(std::f64::consts::FRAC_PI_2)
 }
 
 fn sum_sq(v: &[Interval; 3]) -> Interval {
@@ -63,7 +64,7 @@ impl LineCone {
             .hi();
         Some(LineCone {
             axis: m,
-            radius: asin_up(s2.sqrt() * (1.0 + 1e-15)),
+            radius: asin_up(margin::up(s2.sqrt(), margin::TIGHT)),
         })
     }
 
@@ -81,7 +82,7 @@ impl LineCone {
             Some(r) if den.lo() > 0.0 => {
                 let s2 = sum_sq(&c).mul(&r).hi();
                 if s2.is_finite() {
-                    asin_up(s2.sqrt() * (1.0 + 1e-15))
+                    asin_up(margin::up(s2.sqrt(), margin::TIGHT))
                 } else {
                     std::f64::consts::FRAC_PI_2
                 }

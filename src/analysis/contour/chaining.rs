@@ -7,6 +7,7 @@ use crate::analysis::contour::drawing::{densify, DENSIFY_STEPS};
 use crate::analysis::contour::joins::Joins;
 use crate::analysis::contour::sides::side_of;
 use crate::bernstein::Bernstein;
+use crate::number::margin;
 use crate::solver::{CrossingId, CurveTopology};
 use crate::surface::DrawPatch;
 use crate::surface::{Edge, RationalPatch};
@@ -192,7 +193,7 @@ pub(crate) fn chain_model(
                 .iter()
                 .map(|&p| draw[p].rounding())
                 .try_fold(0.0f64, |a, r| Some(a.max(r?)))?;
-            Some((w + r) * (1.0 + 1e-12))
+            Some(margin::up(w + r, margin::FEW))
         });
         let within = accuracy.is_some_and(|(_, tol)| worst.is_some_and(|w| w <= tol));
         curves.push(SilhouetteCurve {

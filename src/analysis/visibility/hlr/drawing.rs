@@ -6,6 +6,7 @@
 use crate::analysis::chords::plane_curve::PatchAccuracy;
 use crate::analysis::contour::drawing::zero_across;
 use crate::analysis::visibility::hlr::lines::Segment;
+use crate::number::margin;
 use crate::number::{Number, Precision, Rational};
 use crate::surface::DrawPatch;
 use crate::surface::Edge;
@@ -162,7 +163,7 @@ pub(super) fn traced_points(
     };
     // The drawn polyline's vertices are within `rounding` of the exact ones, so each drawn
     // segment is within it of the exact chord (a convex combination of the vertex errors).
-    let bound = (chords + rounding) * (1.0 + 1e-12);
+    let bound = margin::up(chords + rounding, margin::FEW);
     let uv = traced
         .points
         .iter()

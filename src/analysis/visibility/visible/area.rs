@@ -9,6 +9,7 @@
 
 use crate::analysis::visibility::visible::outline::quarters;
 use crate::bernstein::Bernstein;
+use crate::number::margin;
 use crate::number::{Interval, Number, Precision};
 use crate::surface::RationalPatch;
 
@@ -89,9 +90,15 @@ fn node_area(n: &DensityNode, level: u32) -> [f64; 2] {
     match n {
         DensityNode::Leaf(d) => {
             let a = 0.25f64.powi(level as i32);
-            [d[0] * a * (1.0 - 1e-12), d[1] * a * (1.0 + 1e-12)]
+            [
+                margin::down(d[0] * a, margin::FEW),
+                margin::up(d[1] * a, margin::FEW),
+            ]
         }
-        DensityNode::Split(_, s) => [s[0] * (1.0 - 1e-12), s[1] * (1.0 + 1e-12)],
+        DensityNode::Split(_, s) => [
+            margin::down(s[0], margin::FEW),
+            margin::up(s[1], margin::FEW),
+        ],
     }
 }
 
@@ -129,7 +136,10 @@ impl AreaElement {
             match node {
                 DensityNode::Leaf(d) => {
                     let a = 0.25f64.powi(level as i32);
-                    return [d[0] * a * (1.0 - 1e-12), d[1] * a * (1.0 + 1e-12)];
+                    return [
+                        margin::down(d[0] * a, margin::FEW),
+                        margin::up(d[1] * a, margin::FEW),
+                    ];
                 }
                 DensityNode::Split(kids, _) => {
                     if l == level {

@@ -41,6 +41,7 @@ use crate::analysis::visibility::ray::{layers_in_front, RayOptions, Sample};
 use crate::analysis::visibility::scene::Scene;
 use crate::error::Error;
 use crate::model::{Model, WeldTolerance};
+use crate::number::margin;
 use crate::number::{Precision, Rational};
 use crate::reason::Reason;
 use crate::solver::precision::{Escalations, Policy};
@@ -336,9 +337,10 @@ pub fn visible_regions(
             stats.closed_trim_loops += region.trim_loops.iter().filter(|l| l.closed).count();
         }
     }
+    let area_fraction = fraction_bounds(sums, stats.cells + patches.len());
     Ok(VisibleRegions {
         patches,
-        area_fraction: fraction_bounds(sums),
+        area_fraction,
         stats,
         assumptions,
         missing_occlusions,
@@ -355,10 +357,14 @@ pub const TRIM_GAP: f64 = 1e-6;
 
 /// Bounds on `V / (V + H + U)` (with the unresolved part `U` anywhere between) from bounds on
 /// the visible, hidden and unresolved parts: `x / (x + y)` grows with `x` and falls with `y`.
-fn fraction_bounds([v, h, u]: [[f64; 2]; 3]) -> [f64; 2] {
+/// The parts are sums of `terms` nonnegative bounds; the quotient's relative rounding is at
+/// most that of its two operands' sums and three more operations, covered by the margin
+/// (`proofs/rounding-margins.md`, the count-dependent margin).
+fn fraction_bounds([v, h, u]: [[f64; 2]; 3], terms: usize) -> [f64; 2] {
     let f = |x: f64, y: f64| if x + y > 0.0 { x / (x + y) } else { 0.0 };
-    let lo = f(v[0], h[1] + u[1]) * (1.0 - 1e-9);
-    let hi = f(v[1] + u[1], h[0]) * (1.0 + 1e-9);
+    let m = margin::covering(2 * terms + 3, margin::MANY);
+    let lo = margin::down(f(v[0], h[1] + u[1]), m);
+    let hi = margin::up(f(v[1] + u[1], h[0]), m);
     [lo.max(0.0), hi.min(1.0)]
 }
 
@@ -540,7 +546,9 @@ fn patch_region(
     let visible_loops = to_loops(qi.iter().map(|q| *q == Ok(0)).collect());
     let possibly_visible_loops =
         to_loops(qi.iter().map(|q| !matches!(q, Ok(c) if *c > 0)).collect());
+    // Sums of powers of 1/4 no finer than 4^-14: exact in f64.
     let domain_fraction = [dom[0], (dom[0] + dom[2]).min(1.0)];
+    let area_margin = margin::covering(n + 3, margin::MANY);
     let region = PatchRegion {
         patch: p,
         facing: facing(
@@ -550,14 +558,15 @@ fn patch_region(
         ),
         certified: counts[2] == 0,
         domain_fraction,
-        area_fraction: fraction_bounds(sums),
+        area_fraction: fraction_bounds(sums, n),
+        // Sums of the `n` cells' bounds, then of the three kinds.
         area: [
-            sums.iter().map(|s| s[0]).sum::<f64>() * (1.0 - 1e-9),
-            sums.iter().map(|s| s[1]).sum::<f64>() * (1.0 + 1e-9),
+            margin::down(sums.iter().map(|s| s[0]).sum::<f64>(), area_margin),
+            margin::up(sums.iter().map(|s| s[1]).sum::<f64>(), area_margin),
         ],
         visible_area: [
-            sums[0][0] * (1.0 - 1e-9),
-            (sums[0][1] + sums[2][1]) * (1.0 + 1e-9),
+            margin::down(sums[0][0], area_margin),
+            margin::up(sums[0][1] + sums[2][1], area_margin),
         ],
         visible_loops,
         possibly_visible_loops,

@@ -27,6 +27,7 @@ use crate::analysis::visibility::scene::Scene;
 use crate::analysis::visibility::sheets::range_on;
 use crate::bernstein::Bernstein;
 use crate::model::Model;
+use crate::number::margin;
 use crate::number::{Interval, Number, Precision};
 use crate::reason::Reason;
 use crate::solver::system::inverse;
@@ -763,7 +764,7 @@ impl Lifting<'_> {
             .add(&pi(2.0 * s_uv).mul(&pi(du * dv)))
             .add(&pi(s_vv).mul(&pi(dv * dv)))
             .mul(&pi(0.125));
-        let bound = first.add(&interp).hi() * (1.0 + 1e-12);
+        let bound = margin::up(first.add(&interp).hi(), margin::FEW);
         // The part that shorter chords cannot reduce: the piece's own drawing error, lifted.
         let floor = pi(s_u).mul(&pi(d1[0])).add(&pi(s_v).mul(&pi(d1[1]))).hi();
         bound.is_finite().then_some([bound, floor])
@@ -914,8 +915,10 @@ impl Lifting<'_> {
             let reach = Interval::point(s_u)
                 .mul(&Interval::point((fb[0] - fa[0]).abs() + 1e-12))
                 .add(&Interval::point(s_v).mul(&Interval::point((fb[1] - fa[1]).abs() + 1e-12)))
-                .hi()
-                * (1.0 + 1e-12);
+                .hi();
+            // Outward-rounded interval arithmetic: `reach` is an upper bound as it is; the
+            // margin (kept so as not to change reported bounds) only widens it.
+            let reach = margin::up(reach, margin::FEW);
             Some(d_near.max(Interval::point(d_far).add(&Interval::point(reach)).hi()))
         };
         let df = half(win.from, &wf, &win.w_from, [0, 1], [1, 2])?;
@@ -1001,7 +1004,7 @@ impl Lifting<'_> {
                     };
                     let full: Vec<Option<f64>> = bounds
                         .iter()
-                        .map(|b| b.map(|b| (b + r) * (1.0 + 1e-12)))
+                        .map(|b| b.map(|b| margin::up(b + r, margin::FEW)))
                         .collect();
                     // Maximal stretches of chords within the tolerance, beyond it, unproven.
                     let class = |b: Option<f64>| match b {
