@@ -1,588 +1,23 @@
-//! Occlusion curves: where a visible outline piece hides the surface right behind it
-//! (paper 000, section 4, made certified: `proofs/visible-regions.md`, claim 4).
-//!
-//! A visible piece of the outline (a silhouette, a free side or a fold edge, QI 0) has, on
-//! the ray through each of its points, a first surface point behind it. On the far side of
-//! the piece in the image that point is visible, on the near side it is hidden by the piece's
-//! own sheet: the curve these points trace is a boundary of the visible region of the surface
-//! behind. The hidden-line drawing finds the first point behind at one sample of the piece
-//! ([`crate::analysis::visibility::hlr::Behind`]); between its cuts no outline crosses the piece in the
-//! image, so that sheet stays first behind all along it (claim 4 (c)).
-//!
-//! The curve is followed from the sample along the piece's drawn polyline: each drawn point's
-//! image is lifted onto the patch behind by Newton's method, crossing to the next patch where
-//! the lift leaves one across a continuing edge (a *window* proven on both patches, (f)). It
-//! is certified with the piece's own proven drawing error `e` (every chord within `e` of its
-//! stretch of the true piece, pointwise): Krawczyk's operator with the image point as an
-//! interval parameter proves, for each chord's tube, a parameter box `W` that holds exactly
-//! one preimage of every image point of the tube (d), chained from the sample's point behind
-//! through the boxes of the vertices. The distance between the true curve and the drawn chord
-//! is then bounded by the piece's error lifted through the inverse Jacobian over `W`, plus the
-//! second-order terms of the chord (e). Near a fold of the surface behind the first term grows
-//! without bound: those stretches are reported with their bound, or unproven.
+//! Certifying a walk: boxes proven around each vertex and chord (Krawczyk with the image
+//! point as an interval parameter), chained from the sample, and the distance bounds.
 
-use crate::analysis::chords::plane_curve::{derivs, partials_on, SurfaceBounds};
-use crate::analysis::projection::{side_point_f64, Projection};
-use crate::analysis::visibility::scene::Scene;
+use super::lift::IPoly;
+use super::walk::{
+    apart_from_square, clamp, grown, hull, lerp, side_axes, sides_crossed, PBox, Vertex, Walk,
+    Window,
+};
+use super::{Lifting, OcclusionRun};
+use crate::analysis::chords::plane_curve::partials_on;
 use crate::analysis::visibility::sheets::range_on;
-use crate::bernstein::Bernstein;
-use crate::model::Model;
 use crate::number::margin;
-use crate::number::{Interval, Number, Precision};
+use crate::number::{Interval, Number};
 use crate::reason::Reason;
 use crate::solver::system::inverse;
-use crate::surface::DrawPatch;
-use crate::surface::{Edge, RationalPatch};
-use rayon::prelude::*;
-
-type IPoly = Bernstein<Interval>;
-type FPoly = Bernstein<f64>;
-
-/// The image of a chord's tube: the image segment from `a` to `a + d` (the image of the drawn
-/// chord: a projection maps segments to segments) grown by `r` per image coordinate (the drawn
-/// chord's error `e` times a bound on the image map's gradient), and its bounding box.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct Tube {
-    a: [Interval; 2],
-    d: [Interval; 2],
-    r: [f64; 2],
-    hull: [Interval; 2],
-}
-
-/// One patch's polynomials for lifting image points onto it.
-pub(crate) struct LiftPatch {
-    /// Image numerators and denominator `x, y, q` (outward intervals) with their first and
-    /// second partials: `[f, f_u, f_v, f_uu, f_uv, f_vv]`.
-    jets: [[IPoly; 6]; 3],
-    /// Bounds on the derivatives of the patch's points.
-    surface: SurfaceBounds,
-    /// The same in f64, for Newton's method.
-    f: [FPoly; 3],
-    df: [[FPoly; 2]; 3],
-    /// The homogeneous space coordinates `X, Y, Z, W`.
-    space: [IPoly; 4],
-}
-
-impl LiftPatch {
-    pub(crate) fn new(scene: &Scene, patch: &RationalPatch, j: usize) -> LiftPatch {
-        let im = &scene.images[j];
-        let exact = [&im.x, &im.y, &im.q];
-        let ders = exact.map(|p| [p.deriv(0), p.deriv(1)]);
-        LiftPatch {
-            jets: exact.map(derivs),
-            surface: SurfaceBounds::new(patch),
-            f: exact.map(|p| p.convert(Precision::F64)),
-            df: ders.map(|d| d.map(|p| p.convert::<f64>(Precision::F64))),
-            space: patch.homogeneous().map(|p| p.convert(Precision::F64)),
-        }
-    }
-
-    /// The point of the patch (extended beyond its square) with image `y`, by Newton's
-    /// method from `w`: `None` if it does not converge.
-    pub(crate) fn newton(&self, y: [f64; 2], mut w: [f64; 2]) -> Option<[f64; 2]> {
-        let mut last = f64::INFINITY;
-        for _ in 0..50 {
-            let ev = |p: &FPoly| p.eval(&w);
-            let q = ev(&self.f[2]);
-            let r = [ev(&self.f[0]) - y[0] * q, ev(&self.f[1]) - y[1] * q];
-            let jac: [[f64; 2]; 2] = std::array::from_fn(|k| {
-                std::array::from_fn(|a| ev(&self.df[k][a]) - y[k] * ev(&self.df[2][a]))
-            });
-            let det = jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0];
-            if det == 0.0 || !det.is_finite() {
-                return None;
-            }
-            let step = [
-                (jac[1][1] * r[0] - jac[0][1] * r[1]) / det,
-                (jac[0][0] * r[1] - jac[1][0] * r[0]) / det,
-            ];
-            w = [w[0] - step[0], w[1] - step[1]];
-            if !(w[0].is_finite() && w[1].is_finite()) || w[0].abs() > 4.0 || w[1].abs() > 4.0 {
-                return None;
-            }
-            last = step[0].abs().max(step[1].abs());
-            if last <= 1e-15 * (1.0 + w[0].abs().max(w[1].abs())) {
-                return Some(w);
-            }
-        }
-        // Steps at the level of rounding: converged as far as f64 allows.
-        (last < 1e-11).then_some(w)
-    }
-
-    /// Krawczyk's test with the image point as a parameter: whether every image point in
-    /// `y` has exactly one preimage in the parameter box `[lo, hi]` (which may reach past the
-    /// square: the polynomials are defined everywhere). `proofs/visible-regions.md`, claim 4.
-    pub(crate) fn unique_preimages(&self, t: &Tube, lo: [f64; 2], hi: [f64; 2]) -> bool {
-        let y = t.hull;
-        let m = [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])];
-        let yc = [0.5 * (y[0].lo() + y[0].hi()), 0.5 * (y[1].lo() + y[1].hi())];
-        // C: the inverse of the point Jacobian at the centre (any matrix keeps the test sound).
-        let jm: Vec<Vec<f64>> = (0..2)
-            .map(|k| {
-                (0..2)
-                    .map(|a| self.df[k][a].eval(&m) - yc[k] * self.df[2][a].eval(&m))
-                    .collect()
-            })
-            .collect();
-        let Some(c) = inverse(&jm) else {
-            return false;
-        };
-        // C G(m; y) for y = a + μ d + δ (μ ∈ [0, 1], |δ_k| ≤ r_k), term by term, so that a
-        // chord that is diagonal in the image does not count as its whole bounding box.
-        let g_a = self.residual(m, t.a);
-        let q_m = self.jets[2][0].eval(&m.map(Interval::point));
-        let jw = self.jacobian_on(y, lo, hi);
-        let dw = [0, 1].map(|a| Interval::new(lo[a] - m[a], hi[a] - m[a]));
-        (0..2).all(|r| {
-            let ci = [Interval::point(c[r][0]), Interval::point(c[r][1])];
-            let along = q_m.mul(&ci[0].mul(&t.d[0]).add(&ci[1].mul(&t.d[1])));
-            let along = Interval::new(along.lo().min(0.0), along.hi().max(0.0));
-            let spread = q_m
-                .mul(&Interval::point(c[r][0].abs()).mul(&Interval::point(t.r[0])))
-                .add(&q_m.mul(&Interval::point(c[r][1].abs()).mul(&Interval::point(t.r[1]))));
-            let m_spread = spread.hi().abs().max(spread.lo().abs());
-            let cg = ci[0]
-                .mul(&g_a[0])
-                .add(&ci[1].mul(&g_a[1]))
-                .sub(&along)
-                .add(&Interval::new(-m_spread, m_spread));
-            let mut k = Interval::point(m[r]).sub(&cg);
-            for (a, d) in dw.iter().enumerate() {
-                let cj = ci[0].mul(&jw[0][a]).add(&ci[1].mul(&jw[1][a]));
-                let e = Interval::point(if r == a { 1.0 } else { 0.0 }).sub(&cj);
-                k = k.add(&e.mul(d));
-            }
-            lo[r] < k.lo() && k.hi() < hi[r]
-        })
-    }
-
-    /// `G(w; y) = (x(w) − y₀ q(w), y(w) − y₁ q(w))` at a point, for every `y` in the box.
-    fn residual(&self, w: [f64; 2], y: [Interval; 2]) -> [Interval; 2] {
-        let wi = w.map(Interval::point);
-        let q = self.jets[2][0].eval(&wi);
-        [0, 1].map(|k| self.jets[k][0].eval(&wi).sub(&y[k].mul(&q)))
-    }
-
-    /// The Jacobian of `G(·; y)` over a parameter box, for every `y` in the image box.
-    fn jacobian_on(&self, y: [Interval; 2], lo: [f64; 2], hi: [f64; 2]) -> [[Interval; 2]; 2] {
-        let rq = [0, 1].map(|a| range_on(&self.jets[2][1 + a], &lo, &hi));
-        std::array::from_fn(|k| {
-            std::array::from_fn(|a| range_on(&self.jets[k][1 + a], &lo, &hi).sub(&y[k].mul(&rq[a])))
-        })
-    }
-
-    /// An enclosure of the patch's points over a parameter box.
-    pub(crate) fn space_box(&self, lo: [f64; 2], hi: [f64; 2]) -> Option<([f64; 3], [f64; 3])> {
-        let r = self.space.clone().map(|p| range_on(&p, &lo, &hi));
-        let mut out = ([0.0; 3], [0.0; 3]);
-        for k in 0..3 {
-            let c = r[k].checked_div(&r[3])?;
-            out.0[k] = c.lo();
-            out.1[k] = c.hi();
-        }
-        Some(out)
-    }
-}
-
-/// An occlusion curve on one patch: a stretch of the lift of a visible outline piece.
-#[derive(Clone, Debug, PartialEq, serde::Serialize)]
-pub struct OcclusionRun {
-    /// The patch the curve lies on (the surface right behind the piece).
-    pub patch: usize,
-    /// Its points (u, v) on that patch (in its square).
-    pub uv: Vec<[f64; 2]>,
-    /// The same points in space.
-    pub xyz: Vec<[f64; 3]>,
-    /// A proven bound on the Hausdorff distance in space between the drawn polyline and the
-    /// true curve on this patch, or `None`.
-    pub error_bound: Option<f64>,
-    /// Why it is not certified, if it is not.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub reason: Option<Reason>,
-}
-
-/// A vertex of a lift: a point of the piece's drawn polyline and its lift.
-#[derive(Clone, Copy, Debug)]
-struct Vertex {
-    x: [f64; 3],
-    w: [f64; 2],
-}
-
-/// Where the lift crosses a continuing edge from patch `from` to patch `to`: three points
-/// of the drawn polyline around the crossing (`x*` where the drawn lift meets the side) and
-/// their lifts on both patches (each extended past its square).
-#[derive(Clone, Debug)]
-struct Window {
-    from: usize,
-    to: usize,
-    /// The side of `from` and of `to` the lift crosses, and whether they run opposite.
-    edges: (Edge, Edge, bool),
-    /// `x₋, x*, x₊` in walking order.
-    x: [[f64; 3]; 3],
-    /// Their lifts on `from` and on `to`.
-    w_from: [[f64; 2]; 3],
-    w_to: [[f64; 2]; 3],
-}
-
-/// A run of the lift on one patch, before certification.
-struct Run {
-    patch: usize,
-    /// The vertices in walking order (with a window at an end, its `x*` is that end).
-    vertices: Vec<Vertex>,
-    /// The windows at its start and at its end (indices into the walk's windows).
-    start: Option<usize>,
-    end: Option<usize>,
-    /// Why the run is not certified, found while following it.
-    reason: Option<Reason>,
-}
-
-/// A lift followed from a start vertex in one direction.
-struct Walk {
-    runs: Vec<Run>,
-    windows: Vec<Window>,
-}
-
-/// What lifting needs of the scene: per patch its lifting polynomials and its drawing
-/// evaluator.
-pub(crate) struct Lifting<'a> {
-    pub scene: &'a Scene,
-    pub patches: Vec<LiftPatch>,
-    pub draws: Vec<DrawPatch>,
-}
-
-impl<'a> Lifting<'a> {
-    /// Converts (once) every patch of the model.
-    pub(crate) fn new(model: &Model, scene: &'a Scene) -> Lifting<'a> {
-        Lifting {
-            scene,
-            patches: (0..model.patches.len())
-                .into_par_iter()
-                .map(|j| LiftPatch::new(scene, &model.patches[j].surface, j))
-                .collect(),
-            draws: model
-                .patches
-                .iter()
-                .map(|p| DrawPatch::new(&p.surface))
-                .collect(),
-        }
-    }
-}
-
-const INSIDE_SLACK: f64 = 1e-12;
-
-fn inside(w: [f64; 2]) -> bool {
-    w.iter()
-        .all(|c| (-INSIDE_SLACK..=1.0 + INSIDE_SLACK).contains(c))
-}
-
-fn clamp(w: [f64; 2]) -> [f64; 2] {
-    w.map(|c| c.clamp(0.0, 1.0))
-}
-
-fn lerp(a: [f64; 3], b: [f64; 3], t: f64) -> [f64; 3] {
-    std::array::from_fn(|k| a[k] + t * (b[k] - a[k]))
-}
-
-/// The side of the square nearest a parameter point, with its parameter.
-fn nearest_side(w: [f64; 2]) -> (Edge, f64) {
-    let d = [
-        w[1].abs(),
-        (w[0] - 1.0).abs(),
-        (w[1] - 1.0).abs(),
-        w[0].abs(),
-    ];
-    let k = (0..4).min_by(|&a, &b| d[a].total_cmp(&d[b])).unwrap_or(0);
-    match k {
-        0 => (Edge::V0, w[0]),
-        1 => (Edge::U1, w[1]),
-        2 => (Edge::V1, w[0]),
-        _ => (Edge::U0, w[1]),
-    }
-}
-
-/// The fixed coordinate of a side, its value, and the side's free coordinate.
-fn side_axes(e: Edge) -> (usize, f64, usize) {
-    match e {
-        Edge::V0 => (1, 0.0, 0),
-        Edge::V1 => (1, 1.0, 0),
-        Edge::U0 => (0, 0.0, 1),
-        Edge::U1 => (0, 1.0, 1),
-    }
-}
-
-/// A parameter box, `[lo, hi]` per coordinate.
-type PBox = [[f64; 2]; 2];
-
-fn apart_from_square(b: &PBox) -> bool {
-    b.iter().any(|r| r[1] < 0.0 || r[0] > 1.0)
-}
-
-fn hull(a: &PBox, b: &PBox) -> PBox {
-    [0, 1].map(|k| [a[k][0].min(b[k][0]), a[k][1].max(b[k][1])])
-}
-
-/// The box grown on every side by `frac` times its larger extent, plus `abs` (the preimage of
-/// an image box around a chord that is diagonal in the image is wide in both parameters even
-/// where the chord's lift runs along one of them).
-fn grown(b: &PBox, frac: f64, abs: f64) -> PBox {
-    let extent = (b[0][1] - b[0][0]).max(b[1][1] - b[1][0]);
-    let g = frac * extent + abs;
-    b.map(|r| [r[0] - g, r[1] + g])
-}
-
-/// The sides of the square a box reaches past.
-fn sides_crossed(b: &PBox) -> Vec<Edge> {
-    let mut out = Vec::new();
-    if b[1][0] < 0.0 {
-        out.push(Edge::V0);
-    }
-    if b[0][1] > 1.0 {
-        out.push(Edge::U1);
-    }
-    if b[1][1] > 1.0 {
-        out.push(Edge::V1);
-    }
-    if b[0][0] < 0.0 {
-        out.push(Edge::U0);
-    }
-    out
-}
-
-impl Lifting<'_> {
-    fn projection(&self) -> &Projection {
-        &self.scene.projection
-    }
-
-    /// The image of a space point (f64, for Newton's targets).
-    fn image(&self, x: [f64; 3]) -> Option<[f64; 2]> {
-        let i = self.projection().image_of_box(x, x)?;
-        Some([0.5 * (i[0].lo() + i[0].hi()), 0.5 * (i[1].lo() + i[1].hi())])
-    }
-
-    fn lift(&self, p: usize, x: [f64; 3], from: [f64; 2]) -> Option<[f64; 2]> {
-        self.patches[p].newton(self.image(x)?, from)
-    }
-
-    /// The image enclosure of the box around points grown by `e`.
-    /// `pts` are collinear points of one drawn chord (its first and last span it).
-    fn tube(&self, pts: &[[f64; 3]], e: f64) -> Option<Tube> {
-        let mut lo = [f64::INFINITY; 3];
-        let mut hi = [f64::NEG_INFINITY; 3];
-        for p in pts {
-            for k in 0..3 {
-                lo[k] = lo[k].min(p[k]);
-                hi[k] = hi[k].max(p[k]);
-            }
-        }
-        let lo = lo.map(|x| Interval::point(x).sub(&Interval::point(e)).lo());
-        let hi = hi.map(|x| Interval::point(x).add(&Interval::point(e)).hi());
-        let proj = self.projection();
-        let (first, last) = (pts.first()?, pts.last()?);
-        let a = proj.image_of_box(*first, *first)?;
-        let b = proj.image_of_box(*last, *last)?;
-        let grad = proj.image_gradient_bound(lo, hi)?;
-        let r = grad.map(|g| Interval::point(g).mul(&Interval::point(e)).hi());
-        let d = [0, 1].map(|k| b[k].sub(&a[k]));
-        let hull = [0, 1].map(|k| {
-            let h = a[k].hull(&b[k]);
-            Interval::new(
-                Interval::point(h.lo()).sub(&Interval::point(r[k])).lo(),
-                Interval::point(h.hi()).add(&Interval::point(r[k])).hi(),
-            )
-        });
-        Some(Tube { a, d, r, hull })
-    }
-
-    /// Follows the lift of a polyline from its first point (lifted to `w` on `patch`),
-    /// crossing continuing edges.
-    fn walk(&self, points: &[[f64; 3]], patch: usize, w: [f64; 2], e: f64) -> Walk {
-        let mut walk = Walk {
-            runs: vec![Run {
-                patch,
-                vertices: vec![Vertex { x: points[0], w }],
-                start: None,
-                end: None,
-                reason: None,
-            }],
-            windows: Vec::new(),
-        };
-        for (i, &xb) in points.iter().enumerate().skip(1) {
-            let last = i + 1 == points.len();
-            loop {
-                let run = walk.runs.last_mut().expect("a run");
-                let a = *run.vertices.last().expect("a vertex");
-                let p = run.patch;
-                let Some(wb) = self.lift(p, xb, a.w) else {
-                    run.reason = Some(Reason::LiftLost { patch: p });
-                    return walk;
-                };
-                if inside(wb) {
-                    run.vertices.push(Vertex { x: xb, w: wb });
-                    break;
-                }
-                // The lift leaves the patch: where along the chord, by bisection.
-                let (mut lo, mut hi, mut w_lo) = (0.0f64, 1.0f64, a.w);
-                for _ in 0..50 {
-                    let mid = 0.5 * (lo + hi);
-                    match self.lift(p, lerp(a.x, xb, mid), w_lo) {
-                        Some(wm) if inside(wm) => {
-                            lo = mid;
-                            w_lo = wm;
-                        }
-                        _ => hi = mid,
-                    }
-                }
-                let (edge, t) = nearest_side(w_lo);
-                let twins = self.scene.twins(p, edge);
-                let [(p2, e2, rev)] = twins[..] else {
-                    // The piece's own end, on an outline side of the patch behind (where the
-                    // piece is cut): its lift is drawn clamped into the square.
-                    if last {
-                        run.vertices.push(Vertex { x: xb, w: wb });
-                        break;
-                    }
-                    run.reason = Some(Reason::LiftLeaves { patch: p, edge });
-                    return walk;
-                };
-                let t2 = if rev { 1.0 - t } else { t };
-                let x_star = lerp(a.x, xb, lo);
-                let Some(w2) = self.lift(p2, x_star, side_point_f64(e2, t2)) else {
-                    run.reason = Some(Reason::LiftLostTo { patch: p2 });
-                    return walk;
-                };
-                // A window around the crossing, within the chord, wide enough that the lifts
-                // of its ends are farther from the crossed sides than the vertex boxes reach.
-                let reach = |q: usize, w: [f64; 2]| {
-                    self.vertex_box(q, x_star, w, e)
-                        .map_or(0.0, |b| b.iter().map(|r| r[1] - r[0]).fold(0.0, f64::max))
-                };
-                let need = 3.0 * reach(p, w_lo).max(reach(p2, w2));
-                let beyond = |w: [f64; 2]| {
-                    w.iter()
-                        .map(|c| (-c).max(c - 1.0))
-                        .fold(f64::NEG_INFINITY, f64::max)
-                };
-                let on = |q: usize, from: [f64; 2], xs: &[[f64; 3]; 3]| {
-                    Some([
-                        self.lift(q, xs[0], from)?,
-                        self.lift(q, xs[1], from)?,
-                        self.lift(q, xs[2], from)?,
-                    ])
-                };
-                let mut delta = 1e-3;
-                let found = loop {
-                    let (l0, l1) = ((lo - delta).max(0.0), (lo + delta).min(1.0));
-                    let xs = [lerp(a.x, xb, l0), x_star, lerp(a.x, xb, l1)];
-                    let lifted = on(p, w_lo, &xs).zip(on(p2, w2, &xs));
-                    let Some((w_from, w_to)) = lifted else {
-                        break None;
-                    };
-                    let wide = beyond(w_from[2]) > need && beyond(w_to[0]) > need;
-                    if wide || (l0 == 0.0 && l1 == 1.0) {
-                        break Some((l0, l1, xs, w_from, w_to));
-                    }
-                    delta *= 2.0;
-                };
-                let Some((l0, l1, xs, w_from, w_to)) = found else {
-                    run.reason = Some(Reason::LiftLostAcross { patches: [p, p2] });
-                    return walk;
-                };
-                let k = walk.windows.len();
-                if l0 > 0.0 {
-                    run.vertices.push(Vertex {
-                        x: xs[0],
-                        w: w_from[0],
-                    });
-                }
-                run.vertices.push(Vertex {
-                    x: x_star,
-                    w: w_from[1],
-                });
-                run.end = Some(k);
-                walk.windows.push(Window {
-                    from: p,
-                    to: p2,
-                    edges: (edge, e2, rev),
-                    x: xs,
-                    w_from,
-                    w_to,
-                });
-                let vertices = vec![
-                    Vertex {
-                        x: x_star,
-                        w: w_to[1],
-                    },
-                    Vertex {
-                        x: xs[2],
-                        w: w_to[2],
-                    },
-                ];
-                walk.runs.push(Run {
-                    patch: p2,
-                    vertices,
-                    start: Some(k),
-                    end: None,
-                    reason: None,
-                });
-                if l1 >= 1.0 {
-                    // x₊ is xb itself.
-                    break;
-                }
-            }
-        }
-        walk
-    }
-}
-
-impl Window {
-    /// The same window walked the other way.
-    fn reversed(&self) -> Window {
-        let r3 = |a: [[f64; 2]; 3]| [a[2], a[1], a[0]];
-        Window {
-            from: self.to,
-            to: self.from,
-            edges: (self.edges.1, self.edges.0, self.edges.2),
-            x: [self.x[2], self.x[1], self.x[0]],
-            w_from: r3(self.w_to),
-            w_to: r3(self.w_from),
-        }
-    }
-}
-
-impl Walk {
-    /// The same lift walked the other way.
-    fn reversed(mut self) -> Walk {
-        self.runs.reverse();
-        for r in &mut self.runs {
-            r.vertices.reverse();
-            std::mem::swap(&mut r.start, &mut r.end);
-        }
-        self.windows = self.windows.iter().map(Window::reversed).collect();
-        self
-    }
-
-    /// `self` (ending at the anchor) followed by `next` (starting there, on the same patch).
-    fn joined(mut self, next: Walk) -> Walk {
-        let offset = self.windows.len();
-        self.windows.extend(next.windows);
-        let mut runs = next.runs.into_iter().map(|mut r| {
-            r.start = r.start.map(|k| k + offset);
-            r.end = r.end.map(|k| k + offset);
-            r
-        });
-        if let (Some(last), Some(first)) = (self.runs.last_mut(), runs.next()) {
-            last.vertices.extend(first.vertices.into_iter().skip(1));
-            last.end = first.end;
-            last.reason = last.reason.take().or(first.reason);
-        }
-        self.runs.extend(runs);
-        self
-    }
-}
+use crate::surface::Edge;
 
 /// A run certified: its vertices (clamped to the square) and per chord its bound before
 /// rounding (`None`: not proven).
-type ProvenRun = (Vec<[f64; 2]>, Vec<Option<f64>>);
+pub(super) type ProvenRun = (Vec<[f64; 2]>, Vec<Option<f64>>);
 
 /// Where the lift is anchored: the first point behind the piece's sample.
 pub(crate) struct Anchor {
@@ -594,31 +29,31 @@ pub(crate) struct Anchor {
 }
 
 /// A chord proven: its box, and the tube's space box (for the anchor).
-struct Proven {
+pub(super) struct Proven {
     /// The chord's index along the walk (a window's: its index, encoded, until placed).
-    chord: usize,
+    pub(super) chord: usize,
     /// For a window's box: 0 on the patch before the crossing, 1 after.
-    window_side: usize,
-    patch: usize,
-    w: PBox,
-    space: ([f64; 3], [f64; 3]),
+    pub(super) window_side: usize,
+    pub(super) patch: usize,
+    pub(super) w: PBox,
+    pub(super) space: ([f64; 3], [f64; 3]),
 }
 
-fn boxes_meet(a: &([f64; 3], [f64; 3]), b: &([f64; 3], [f64; 3])) -> bool {
+pub(super) fn boxes_meet(a: &([f64; 3], [f64; 3]), b: &([f64; 3], [f64; 3])) -> bool {
     (0..3).all(|k| a.0[k] <= b.1[k] && b.0[k] <= a.1[k])
 }
 
-fn point_distance(a: [f64; 3], b: [f64; 3]) -> f64 {
+pub(super) fn point_distance(a: [f64; 3], b: [f64; 3]) -> f64 {
     (0..3).map(|k| (a[k] - b[k]).powi(2)).sum::<f64>().sqrt()
 }
 
 /// The deepest bisection of a chord whose box is not proven.
-const MAX_SPLITS: u32 = 6;
+pub(super) const MAX_SPLITS: u32 = 6;
 
 impl Lifting<'_> {
     /// A box around `w` holding exactly one preimage of every image point of the tube
     /// around `x` (on patch `p`), or `None`.
-    fn vertex_box(&self, p: usize, x: [f64; 3], w: [f64; 2], e: f64) -> Option<PBox> {
+    pub(super) fn vertex_box(&self, p: usize, x: [f64; 3], w: [f64; 2], e: f64) -> Option<PBox> {
         let t = self.tube(&[x], e)?;
         let y = t.hull;
         let lp = &self.patches[p];
@@ -647,7 +82,13 @@ impl Lifting<'_> {
 
     /// A box holding the vertex boxes of both ends and exactly one preimage of every image
     /// point of the chord's tube, or `None`.
-    fn chord_box(&self, p: usize, xs: &[[f64; 3]], ends: &[PBox], e: f64) -> Option<PBox> {
+    pub(super) fn chord_box(
+        &self,
+        p: usize,
+        xs: &[[f64; 3]],
+        ends: &[PBox],
+        e: f64,
+    ) -> Option<PBox> {
         let t = self.tube(xs, e)?;
         let h = ends.iter().skip(1).fold(ends[0], |acc, b| hull(&acc, b));
         // An axis-aligned image box maps to a parallelogram in parameters: a box that holds
@@ -661,7 +102,7 @@ impl Lifting<'_> {
     }
 
     /// The space box of a chord's tube.
-    fn space_tube(xs: &[[f64; 3]], e: f64) -> ([f64; 3], [f64; 3]) {
+    pub(super) fn space_tube(xs: &[[f64; 3]], e: f64) -> ([f64; 3], [f64; 3]) {
         let mut lo = [f64::INFINITY; 3];
         let mut hi = [f64::NEG_INFINITY; 3];
         for p in xs {
@@ -679,7 +120,14 @@ impl Lifting<'_> {
     /// points' rounding), given a box `w` proven to hold exactly one preimage of every image
     /// point of the chord's tube and the lifts of its ends (`proofs/visible-regions.md`,
     /// claim 4, "The chord bound").
-    fn chord_bound(&self, p: usize, w: &PBox, a: Vertex, b: Vertex, e: f64) -> Option<[f64; 2]> {
+    pub(super) fn chord_bound(
+        &self,
+        p: usize,
+        w: &PBox,
+        a: Vertex,
+        b: Vertex,
+        e: f64,
+    ) -> Option<[f64; 2]> {
         let lp = &self.patches[p];
         let (lo, hi) = ([w[0][0], w[1][0]], [w[0][1], w[1][1]]);
         let pi = Interval::point;
@@ -772,7 +220,7 @@ impl Lifting<'_> {
 
     /// Whether a box of patch `p` reaches past a side that is an edge continuing into one
     /// other patch (other than `allowed`).
-    fn crosses_continuing(&self, p: usize, b: &PBox, allowed: Option<Edge>) -> bool {
+    pub(super) fn crosses_continuing(&self, p: usize, b: &PBox, allowed: Option<Edge>) -> bool {
         sides_crossed(b)
             .into_iter()
             .any(|s| Some(s) != allowed && self.scene.twins(p, s).len() == 1)
@@ -782,7 +230,7 @@ impl Lifting<'_> {
     /// vertices after `a` (ending with `b`), each chord's bound (`None` if not proven) and the
     /// proven chords' boxes (numbered by their place in `bounds`).
     #[allow(clippy::too_many_arguments)]
-    fn prove_chord(
+    pub(super) fn prove_chord(
         &self,
         p: usize,
         a: (Vertex, PBox),
@@ -841,7 +289,12 @@ impl Lifting<'_> {
     /// Proves a window: boxes on both patches and the conditions of claim 4 that make the
     /// true curve pass from one to the other inside them. Returns the two boxes' space
     /// diagonals.
-    fn prove_window(&self, win: &Window, e: f64, proven: &mut Vec<Proven>) -> Option<[f64; 2]> {
+    pub(super) fn prove_window(
+        &self,
+        win: &Window,
+        e: f64,
+        proven: &mut Vec<Proven>,
+    ) -> Option<[f64; 2]> {
         let (edge_from, edge_to, rev) = win.edges;
         let boxes = |p: usize, ws: &[[f64; 2]; 3]| -> Option<([PBox; 3], PBox)> {
             let v: Vec<PBox> = (0..3)
@@ -1061,7 +514,7 @@ impl Lifting<'_> {
     /// Certifies a walk: per run, its refined vertices (clamped to the square) and per chord
     /// a bound on its Hausdorff distance before rounding, `None` where the chord is not proven
     /// or not joined to the anchor through proven chords.
-    fn prove(
+    pub(super) fn prove(
         &self,
         walk: &Walk,
         [e, target]: [f64; 2],
@@ -1204,7 +657,8 @@ impl Lifting<'_> {
 mod tests {
     use super::*;
     use crate::analysis::view::View;
-    use crate::model::{Format, WeldTolerance};
+    use crate::analysis::visibility::scene::Scene;
+    use crate::model::{Format, Model, WeldTolerance};
     use crate::number::Rational;
     use crate::testing::shapes;
 
