@@ -193,9 +193,13 @@ def cmd_compare(args):
     for n in names:
         if comparable(a / n) != comparable(b / n):
             differ.append((n, "differs"))
+    ia, ib = (json.loads((d / "index.json").read_text()) for d in (a, b))
+    for job in sorted(set(ia) & set(ib)):
+        if ia[job]["exit"] != ib[job]["exit"]:
+            differ.append((job, f"exit {ia[job]['exit']} -> {ib[job]['exit']}"))
     for n, why in differ:
         print(f"{why}: {n}")
-    print(f"{len(names)} outputs compared, {len(names) - len(differ)} identical, {len(differ)} differ")
+    print(f"{len(names)} outputs and {len(set(ia) & set(ib))} exit codes compared, {len(differ)} differ")
     return 1 if differ else 0
 
 
