@@ -584,3 +584,100 @@ fn the_zero_direction_is_refused() {
     assert_eq!(s.curves.len(), 1);
     assert!(s.curves[0].closed && s.topology_certified());
 }
+
+/// The eye on, inside and just outside a sphere of radius 2 about the origin, at its poles
+/// (which lie on collapsed patch sides) and at ordinary points, against the closed form: the
+/// contour generator of an eye `E` is `{P : P · E = r²}` on the sphere, a circle for
+/// `|E| > r`, the single point `E` for `|E| = r`, empty inside (issue 26: at a pole the
+/// single point was certified away).
+#[test]
+fn an_eye_on_inside_and_just_outside_a_sphere() {
+    let m = model(shapes::sphere(&q(2, 1)));
+    let eye = |x: Rational, y: Rational, z: Rational| View::Eye([x, y, z]);
+    let tiny = |k: u32| {
+        let mut t = Rational::from(1);
+        for _ in 0..k {
+            t /= 10;
+        }
+        t
+    };
+    // On the sphere at either pole: no curve, and the pole as an isolated point, certified.
+    for z in [2, -2] {
+        let s = solve(&m, &eye(q(0, 1), q(0, 1), q(z, 1)));
+        assert!(s.unresolved.is_empty(), "{:?}", s.unresolved);
+        assert!(s.curves.is_empty(), "pole {z}: {} curves", s.curves.len());
+        assert_eq!(
+            s.singular_points.len(),
+            1,
+            "pole {z}: {:?}",
+            s.singular_points
+        );
+        let p = &s.singular_points[0];
+        assert_eq!(p.branches, 0);
+        assert!(
+            p.point[0].abs() < 1e-12
+                && p.point[1].abs() < 1e-12
+                && (p.point[2] - z as f64).abs() < 1e-12,
+            "{p:?}"
+        );
+    }
+    // On the sphere at ordinary points (an exact rational point of it, a patch corner on the
+    // equator): never certified, never empty-and-certified.
+    for e in [
+        eye(q(6, 5), q(8, 5), q(0, 1)),
+        eye(q(2, 1), q(0, 1), q(0, 1)),
+    ] {
+        let s = solve(&m, &e);
+        assert!(
+            !s.unresolved.is_empty(),
+            "{e:?}: certified with {} curves",
+            s.curves.len()
+        );
+    }
+    // Inside: nothing, certified.
+    for e in [
+        eye(q(0, 1), q(0, 1), q(1, 1)),
+        eye(q(1, 1), q(0, 1), q(0, 1)),
+    ] {
+        let s = solve(&m, &e);
+        assert!(s.unresolved.is_empty() && s.curves.is_empty() && s.singular_points.is_empty());
+    }
+    // Just outside (1e-9 and 1e-12), at a pole and at an ordinary point: one closed curve,
+    // certified, near the closed-form circle (no tolerance asked: the drawing is not bounded,
+    // so only roughly), and no isolated point.
+    for k in [9, 12] {
+        let out = Rational::from(2) + tiny(k);
+        for e in [
+            eye(q(0, 1), q(0, 1), out.clone()),
+            eye(out.clone(), q(0, 1), q(0, 1)),
+        ] {
+            let s = solve(&m, &e);
+            assert!(s.unresolved.is_empty(), "{e:?}: {:?}", s.unresolved);
+            assert_eq!(s.curves.len(), 1, "{e:?}");
+            assert!(s.curves[0].closed && s.singular_points.is_empty());
+            let View::Eye(ev) = &e else { unreachable!() };
+            let ef = ev.clone().map(|c| c.to_f64());
+            for p in &s.curves[0].points {
+                let dot: f64 = (0..3).map(|i| p[i] * ef[i]).sum();
+                assert!((dot - 4.0).abs() < 1e-3, "{e:?}: {p:?}");
+            }
+        }
+    }
+    // Clearly outside, with a tolerance: every drawn point within it of the circle.
+    let e = eye(q(0, 1), q(0, 1), q(21, 10));
+    let tol = 1e-5;
+    let s = silhouette(
+        &m,
+        &e,
+        &ContourOptions::new(CurveOptions::default(), WeldTolerance::Exact, Some(tol)),
+    )
+    .unwrap();
+    assert!(s.curves.len() == 1 && s.curves[0].error_bound.is_some_and(|b| b <= tol));
+    for p in &s.curves[0].points {
+        let r = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+        assert!(
+            (r - 2.0).abs() <= tol * 1.01 && (p[2] * 2.1 - 4.0).abs() <= 2.1 * tol * 1.01,
+            "{p:?}"
+        );
+    }
+}

@@ -167,6 +167,8 @@ pub struct SingularPoint {
     pub cell: [[f64; 2]; 2],
     /// Its parameters are exact dyadic numbers.
     pub exact: bool,
-    /// The number of curve arcs that end at it.
+    /// The number of curve arcs that end at it (0: an isolated point of the curve, such as a
+    /// collapsed point on the silhouette that no arc reaches, whose `box` is then the
+    /// collapsed side and `uv` its middle: `proofs/silhouette-join.md`, "Collapsed sides").
     pub branches: usize,
 }

@@ -7,7 +7,7 @@
 
 use crate::analysis::chords::plane_curve::PatchAccuracy;
 use crate::analysis::contour::chaining::chain_model;
-use crate::analysis::contour::curves::{Degenerate, Node, Silhouette, SolvedPatch};
+use crate::analysis::contour::curves::{Degenerate, Node, Silhouette, SingularPoint, SolvedPatch};
 use crate::analysis::contour::drawing::refined_for;
 use crate::analysis::contour::joins::{ends_at_edge, join_side, join_zero_side, Joins};
 use crate::analysis::contour::sides::{
@@ -79,6 +79,12 @@ pub struct CurveRules {
     /// The `degenerate` kind of a line inside a patch on which it vanishes ("silhouette
     /// line").
     pub whole_line: &'static str,
+    /// For a family whose function vanishes on a collapsed side only through a known factor
+    /// (a silhouette's: the normal's), the order of that factor on the side. Where the
+    /// function vanishes to a higher order, the collapsed point is itself on the curve
+    /// (`proofs/silhouette-join.md`, "Collapsed sides"); `None`: not analysed (the collapsed
+    /// factor is divided out whole).
+    pub spurious_collapse: Option<fn(&RationalPatch, Edge) -> usize>,
 }
 
 /// The curves `g_i = 0` on a model, one exact polynomial per patch (any family defined by
@@ -119,6 +125,27 @@ pub fn model_curves(
                     }
                 }
             }
+            g
+        })
+        .collect();
+    // Collapsed sides where the function vanishes to a higher order than its spurious factor:
+    // their collapsed point is on the curve.
+    let on_curve_poles: Vec<(usize, Edge, usize)> = adj
+        .collapsed
+        .iter()
+        .filter(|&&(i, edge, _)| {
+            let Some(order) = rules.spurious_collapse else {
+                return false;
+            };
+            let k = divided[i].iter().find(|d| d.0 == edge).map_or(0, |d| d.1);
+            k > order(patches[i], edge)
+        })
+        .copied()
+        .collect();
+    let solve_gs: Vec<Bernstein<Rational>> = solve_gs
+        .into_iter()
+        .enumerate()
+        .map(|(i, mut g)| {
             // A side on which g vanishes identically is part of the silhouette, exactly; but
             // where the rest of the curve meets it, g is singular (and if g vanishes to a
             // higher order there, g keeps one sign across it). Divide its factor out entirely:
@@ -317,7 +344,7 @@ pub fn model_curves(
             .map(|(i, g)| (!tops[i].arcs.is_empty()).then(|| PatchAccuracy::new(patches[i], g)))
             .collect()
     });
-    let (curves, singular_points) = chain_model(
+    let (curves, mut singular_points) = chain_model(
         &tops,
         &gs_fast,
         &patches,
@@ -326,6 +353,7 @@ pub fn model_curves(
         accuracy.as_deref().zip(tol),
         opts.deadline,
     );
+    singular_points.extend(isolated_poles(&on_curve_poles, &adj, &tops, &patches));
     Silhouette {
         curves,
         singular_points,
@@ -339,4 +367,54 @@ pub fn model_curves(
         tolerance: tol,
         escalations,
     }
+}
+
+/// The collapsed points on the curve that no arc reaches: isolated points of the curve
+/// (`proofs/silhouette-join.md`, "Collapsed sides"), each once, with the side of the first
+/// patch that collapses to it.
+fn isolated_poles(
+    on_curve: &[(usize, Edge, usize)],
+    adj: &PatchAdjacency,
+    tops: &[CurveTopology],
+    patches: &[&RationalPatch],
+) -> Vec<SingularPoint> {
+    let mut out: Vec<SingularPoint> = Vec::new();
+    let mut seen = std::collections::BTreeSet::new();
+    for &(patch, edge, point) in on_curve {
+        if !seen.insert(point) {
+            continue;
+        }
+        // Every side that collapses to this point, on every patch.
+        let reached = adj
+            .collapsed
+            .iter()
+            .filter(|c| c.2 == point)
+            .any(|&(p, e, _)| {
+                tops[p].arcs.iter().any(|a| {
+                    [a.from, a.to]
+                        .iter()
+                        .any(|id| side_of(id).iter().any(|s| s.0 == e))
+                })
+            });
+        if reached {
+            continue;
+        }
+        let (axis, at_one) = side_axis(edge);
+        let mut uv = [0.5, 0.5];
+        uv[axis] = if at_one { 1.0 } else { 0.0 };
+        let mut cell = [[0.0, 0.0], [1.0, 1.0]];
+        cell[0][axis] = uv[axis];
+        cell[1][axis] = uv[axis];
+        let q = |x: f64| Rational::from_f64(x).unwrap_or_default();
+        let p = patches[patch].eval(&q(uv[0]), &q(uv[1]));
+        out.push(SingularPoint {
+            patch,
+            uv,
+            point: p.map(|c| c.to_f64()),
+            cell,
+            exact: true,
+            branches: 0,
+        });
+    }
+    out
 }

@@ -213,6 +213,7 @@ pub(crate) fn parabolic_curves(
         whole_patch: "parabolic everywhere",
         whole_side: "parabolic side",
         whole_line: "parabolic line",
+        spurious_collapse: None,
     };
     model_curves(model, ks, &rules, opts, weld, tol)
 }

@@ -15,7 +15,7 @@ use crate::error::Error;
 use crate::model::{Model, WeldTolerance};
 use crate::number::Rational;
 use crate::solver::CurveOptions;
-use crate::surface::RationalPatch;
+use crate::surface::{Edge, RationalPatch};
 use rayon::prelude::*;
 
 use crate::analysis::contour::family::{model_curves, CurveRules};
@@ -112,8 +112,22 @@ pub(crate) fn silhouette_curves(
         whole_patch: "edge-on",
         whole_side: "silhouette side",
         whole_line: "silhouette line",
+        spurious_collapse: Some(normal_side_order),
     };
     model_curves(model, gs, &rules, opts, weld, tol)
+}
+
+/// The order to which the normal `Ñ` (every component) vanishes on a side: the spurious
+/// factor of the silhouette function on a collapsed side (`proofs/silhouette-join.md`,
+/// "Collapsed sides").
+fn normal_side_order(patch: &RationalPatch, edge: Edge) -> usize {
+    patch
+        .normal()
+        .iter()
+        .filter(|c| !c.is_zero())
+        .map(|c| crate::analysis::contour::sides::deflate_side_counted(c, edge).1)
+        .min()
+        .unwrap_or(usize::MAX)
 }
 
 #[cfg(test)]
