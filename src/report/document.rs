@@ -59,6 +59,18 @@ pub fn pretty(report: &impl serde::Serialize) -> serde_json::Result<String> {
     serde_json::to_string_pretty(report).map(|s| s + "\n")
 }
 
+/// `json` and `text` of a [`WithResult`]: its report's.
+macro_rules! report_parts {
+    () => {
+        fn json(&self) -> serde_json::Result<String> {
+            pretty(&self.report)
+        }
+        fn text(&self) -> String {
+            self.report.text()
+        }
+    };
+}
+
 /// A report with the result it was made from, which its drawing needs (every unresolved
 /// box, every cell: more than the JSON holds).
 #[derive(Debug)]
@@ -70,12 +82,7 @@ pub struct WithResult<'a, R, A> {
 }
 
 impl Document for WithResult<'_, SilhouetteReport, Silhouette> {
-    fn json(&self) -> serde_json::Result<String> {
-        pretty(&self.report)
-    }
-    fn text(&self) -> String {
-        self.report.text()
-    }
+    report_parts!();
     fn svg(&self, model: &Model, view: &View) -> Option<String> {
         let r = &self.report;
         let title = format!(
@@ -100,12 +107,7 @@ impl Document for WithResult<'_, SilhouetteReport, Silhouette> {
 }
 
 impl Document for WithResult<'_, HlrReport, HiddenLines> {
-    fn json(&self) -> serde_json::Result<String> {
-        pretty(&self.report)
-    }
-    fn text(&self) -> String {
-        self.report.text()
-    }
+    report_parts!();
     fn svg(&self, model: &Model, view: &View) -> Option<String> {
         let r = &self.report;
         let title = format!(
@@ -123,12 +125,7 @@ impl Document for WithResult<'_, HlrReport, HiddenLines> {
 }
 
 impl Document for WithResult<'_, VisibleReport, VisibleRegions> {
-    fn json(&self) -> serde_json::Result<String> {
-        pretty(&self.report)
-    }
-    fn text(&self) -> String {
-        self.report.text()
-    }
+    report_parts!();
     fn svg(&self, model: &Model, view: &View) -> Option<String> {
         let r = self.result;
         let title = format!(
@@ -147,12 +144,7 @@ impl Document for WithResult<'_, VisibleReport, VisibleRegions> {
 }
 
 impl Document for WithResult<'_, EventsReport, Events> {
-    fn json(&self) -> serde_json::Result<String> {
-        pretty(&self.report)
-    }
-    fn text(&self) -> String {
-        self.report.text()
-    }
+    report_parts!();
     /// On the viewing sphere: the view is not used.
     fn svg(&self, _: &Model, _: &View) -> Option<String> {
         let title = format!(
