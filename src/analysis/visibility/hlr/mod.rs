@@ -8,22 +8,22 @@
 //! (a penetration). [`hidden_lines`] is a forward pipeline of four stages, one module each,
 //! every stage's output the next one's input:
 //!
-//! 1. [`lines`]: the candidate lines, cut into [`lines::Segment`]s whose images are monotone,
+//! 1. `lines.rs`: the candidate lines, cut into segments whose images are monotone,
 //!    with the vertices where lines meet in space (patch corners, silhouette junctions on
 //!    sides, cut points);
-//! 2. [`roles`]: which stretches of each segment are outline ([`roles::Roles`]): a shared
+//! 2. `roles.rs`: which stretches of each segment are outline: a shared
 //!    edge across which the surface provably continues in the image is inside a cluster
 //!    (paper 000, section 4) and cannot change the QI of what lies behind it;
-//! 3. [`crossings`]: every pair of segments whose image boxes meet, every side's
+//! 3. `crossings.rs`: every pair of segments whose image boxes meet, every side's
 //!    self-crossings, every segment against every patch that shares no corner with its own,
-//!    solved as square systems ([`systems`]) by the certified system solver, with the boxes
+//!    solved as square systems (`systems.rs`) by the certified system solver, with the boxes
 //!    around shared vertices and folds excluded by the lemmas of `proofs/hidden-lines.md`
-//!    ([`lemmas`]); the result is a list of [`crossings::Event`]s (cuts and unresolved
+//!    (`lemmas.rs`); the result is a list of events (cuts and unresolved
 //!    stretches) per segment;
-//! 4. [`pieces`]: each segment cut at its events into pieces; between cuts the QI is
+//! 4. `pieces.rs`: each segment cut at its events into pieces; between cuts the QI is
 //!    constant (`proofs/hidden-lines.md`, claim 1) and is found by one certified ray test
 //!    ([`crate::analysis::visibility::ray::layers_in_front`]) at a sample point (others are tried
-//!    if one is refused); each piece is drawn ([`drawing`]), to a tolerance with a bound.
+//!    if one is refused); each piece is drawn (`drawing.rs`), to a tolerance with a bound.
 //!
 //! What is not proven is reported: unresolved pieces (with the reason), silhouette regions the
 //! curve solver did not resolve, and the assumption that adjacent patches do not cross each
