@@ -125,7 +125,13 @@ impl SilhouetteReport {
                 }
             );
         }
-        for p in &r.singular_points {
+        for p in r.singular_points.iter().filter(|p| p.branches == 0) {
+            t += &format!(
+                "isolated point of the curve: [{:.6}, {:.6}, {:.6}] (the collapsed side of patch {} through ({:.6}, {:.6}))\n",
+                p.point[0], p.point[1], p.point[2], p.patch, p.uv[0], p.uv[1]
+            );
+        }
+        for p in r.singular_points.iter().filter(|p| p.branches > 0) {
             t += &format!(
                 "singular point: patch {} at ({:.6}, {:.6}), {} arcs meet ({}), point [{:.6}, {:.6}, {:.6}]\n",
                 p.patch,
