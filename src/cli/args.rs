@@ -144,7 +144,7 @@ pub(crate) fn check_run_arguments(run: &RunArgs) -> Result<(), CliError> {
     if let Some(t) = run.time_limit {
         if !(0.0..1e9).contains(&t) {
             return Err(CliError::input(format!(
-                "--time-limit: expected a number of seconds, 0 or more, found {t}"
+                "--time-limit: expected a number of seconds from 0 to below 1e9, found {t}"
             )));
         }
     }

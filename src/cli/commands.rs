@@ -128,9 +128,6 @@ pub(crate) fn silhouette_command(
             "--certificate: only the certified method proves anything",
         ));
     }
-    if run.output.is_some() && run.output == certificate {
-        return Err(CliError::input("-o and --certificate name the same file"));
-    }
     let Loaded {
         name,
         model: m,

@@ -16,18 +16,51 @@ pub(crate) fn w(r: std::io::Result<()>) -> Result<(), CliError> {
         code: 1,
     })
 }
-/// Refuses to overwrite an existing file unless asked.
+/// Checks the output files before any work (exit 2): each must be writable where it is named
+/// (its folder exists and is a folder), none may be an existing file unless `force`, and no two
+/// may name the same file, however they are spelled.
 pub(crate) fn refuse_overwrite<'a>(
     paths: impl Iterator<Item = &'a PathBuf>,
     force: bool,
 ) -> Result<(), CliError> {
+    let mut seen: Vec<(PathBuf, &PathBuf)> = Vec::new();
     for path in paths {
+        let folder = match path.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+            _ => PathBuf::from("."),
+        };
+        if !folder.is_dir() {
+            return Err(CliError::input(format!(
+                "{}: cannot write there: {} is not a folder",
+                path.display(),
+                folder.display()
+            )));
+        }
+        if path.is_dir() {
+            return Err(CliError::input(format!(
+                "{}: is a folder, not a file",
+                path.display()
+            )));
+        }
         if path.exists() && !force {
             return Err(CliError::input(format!(
                 "{}: exists; not overwritten (use --force)",
                 path.display()
             )));
         }
+        // The same file under two spellings: compare the canonical folder and the name.
+        let canonical = folder
+            .canonicalize()
+            .unwrap_or(folder)
+            .join(path.file_name().unwrap_or_default());
+        if let Some((_, other)) = seen.iter().find(|(c, _)| *c == canonical) {
+            return Err(CliError::input(format!(
+                "{} and {} name the same file",
+                other.display(),
+                path.display()
+            )));
+        }
+        seen.push((canonical, path));
     }
     Ok(())
 }

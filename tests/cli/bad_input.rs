@@ -372,3 +372,54 @@ fn far_points_and_tiny_welds_do_not_panic() {
         );
     }
 }
+
+/// Output paths are checked before any work (issue 26): a missing folder, a plain file as
+/// the folder, a folder as the file, and one file under two spellings are exit 2 with one
+/// line, quickly, and nothing is written.
+#[test]
+fn output_paths_are_checked_before_the_work() {
+    let dir = std::env::temp_dir().join(format!("limn-outputs-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let plain = dir.join("plain");
+    std::fs::write(&plain, "mine").unwrap();
+    let missing = dir.join("no-such-folder").join("out.json");
+    let under_file = plain.join("out.json");
+    let s = |p: &PathBuf| p.display().to_string();
+    let teapot = "fixtures/bezier/teapot.bpt";
+    for (out, needle) in [
+        (s(&missing), "is not a folder"),
+        (s(&under_file), "is not a folder"),
+        (s(&dir), "is a folder"),
+    ] {
+        let start = Instant::now();
+        let run = limn(&["hlr", teapot, "--dir", "1,2,3", "-o", &out]);
+        let problems = one_line_failure(&run, &format!("limn: {out}"), needle);
+        assert!(problems.is_empty(), "{problems:?}\n{}", run.describe());
+        assert!(
+            start.elapsed() < Duration::from_secs(5),
+            "checked after the work?"
+        );
+    }
+    // -o and --certificate naming one file two ways.
+    let a = s(&dir.join("same.json"));
+    let b = format!("{}/./same.json", dir.display());
+    let run = limn(&[
+        "silhouette",
+        teapot,
+        "--dir",
+        "1,2,3",
+        "-o",
+        &a,
+        "--certificate",
+        &b,
+    ]);
+    let problems = one_line_failure(&run, &format!("limn: {a}"), "name the same file");
+    assert!(problems.is_empty(), "{problems:?}\n{}", run.describe());
+    assert!(!dir.join("same.json").exists());
+    assert_eq!(std::fs::read_to_string(&plain).unwrap(), "mine");
+    // The time limit's bound is the one the message states.
+    let run = limn(&["hlr", teapot, "--dir", "1,2,3", "--time-limit", "1e9"]);
+    let problems = one_line_failure(&run, "limn: --time-limit", "below 1e9");
+    assert!(problems.is_empty(), "{problems:?}\n{}", run.describe());
+    let _ = std::fs::remove_dir_all(&dir);
+}
