@@ -16,8 +16,12 @@ pub enum ParseNumberError {
     #[error("zero denominator in {0:?}")]
     ZeroDenominator(String),
     /// An exponent beyond ±10000 (almost certainly corrupt data; it would build huge integers).
-    #[error("exponent out of range in {0:?}")]
+    #[error("exponent out of range (at most ±10000) in {0:?}")]
     ExponentRange(String),
+    /// More digits than a numeral may have (2,000): the count, and the numeral's first
+    /// characters.
+    #[error("a numeral of {1} digits, more than the 2000 limn reads: {0}…")]
+    TooManyDigits(String, usize),
 }
 
 /// The largest decimal exponent accepted.
@@ -93,7 +97,8 @@ fn parse_decimal(t: &str, whole: &str) -> Result<Rational, ParseNumberError> {
         return Err(invalid());
     }
     if digits.len() > MAX_DIGITS {
-        return Err(invalid());
+        let preview: String = whole.chars().take(24).collect();
+        return Err(ParseNumberError::TooManyDigits(preview, digits.len()));
     }
     let mut exponent: i64 = 0;
     if i < bytes.len() && matches!(bytes[i], b'e' | b'E' | b'd' | b'D') {
