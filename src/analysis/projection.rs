@@ -146,7 +146,7 @@ impl Projection {
                 if d.iter().all(|c| c.sign().is_zero()) {
                     return Err(ProjectionError::ZeroDirection);
                 }
-                d.clone()
+                crate::analysis::view::working_direction(d)
             }
             View::Eye(e) => {
                 let centre: [Rational; 3] = std::array::from_fn(|k| {

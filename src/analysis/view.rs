@@ -59,6 +59,19 @@ impl View {
         }
     }
 
+    /// The direction an analysis works with: a direction's length does not matter, so one
+    /// whose largest component lies outside `[2⁻⁸, 2⁸]` is scaled exactly by a power of two
+    /// until it lies in `[1, 2)` (so that `--dir 1e308,1e308,1e308` and `--dir 1,1,1` give
+    /// the same answer: f64 enclosures of the functions built from it stay in range); others,
+    /// and eyes, unchanged (their results are then bit for bit those of the direction as
+    /// written).
+    pub fn working(&self) -> View {
+        match self {
+            View::Direction(d) => View::Direction(working_direction(d)),
+            View::Eye(_) => self.clone(),
+        }
+    }
+
     /// Whether a direction view is the zero vector (meaningless).
     pub fn is_degenerate(&self) -> bool {
         match self {
@@ -66,6 +79,39 @@ impl View {
             View::Eye(_) => false,
         }
     }
+}
+
+/// [`View::working`] of a direction.
+pub fn working_direction(d: &[Rational; 3]) -> [Rational; 3] {
+    let Some(m) = d.iter().map(|c| c.clone().abs()).max() else {
+        return d.clone();
+    };
+    if m.cmp0() == std::cmp::Ordering::Equal {
+        return d.clone();
+    }
+    let pow2 = |k: i64| {
+        let mut p = Rational::from(1);
+        if k >= 0 {
+            p <<= k as u32;
+        } else {
+            p >>= (-k) as u32;
+        }
+        p
+    };
+    if pow2(-8) <= m && m <= pow2(8) {
+        return d.clone();
+    }
+    // k with 2^k ≤ m < 2^(k+1): estimated from the bit lengths, then corrected exactly.
+    let bits = |i: &rug::Integer| i64::from(i.significant_bits());
+    let mut k = bits(m.numer()) - bits(m.denom());
+    while pow2(k) > m {
+        k -= 1;
+    }
+    while pow2(k + 1) <= m {
+        k += 1;
+    }
+    let scale = pow2(-k);
+    d.clone().map(|c| c * &scale)
 }
 
 /// Parses "x,y,z" into an exact vector.

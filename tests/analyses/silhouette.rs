@@ -681,3 +681,43 @@ fn an_eye_on_inside_and_just_outside_a_sphere() {
         );
     }
 }
+
+/// A direction's length does not change the answer (issue 26): `d`, `d · 10^±300` and
+/// `d · 10^±400` (beyond f64's range) give the same certified curves on a torus and a sphere.
+#[test]
+fn the_length_of_the_direction_does_not_matter() {
+    let pow10 = |k: i32| {
+        let mut p = Rational::from(1);
+        for _ in 0..k.unsigned_abs() {
+            if k > 0 {
+                p *= 10;
+            } else {
+                p /= 10;
+            }
+        }
+        p
+    };
+    for (name, patches) in [
+        ("torus", shapes::torus(&q(2, 1), &q(1, 1))),
+        ("sphere", shapes::sphere(&q(1, 1))),
+    ] {
+        let m = model(patches);
+        for d in [[1, 2, 3], [1, 0, 0], [1, 1, 1]] {
+            let base = solve(&m, &dir(d[0], d[1], d[2]));
+            for k in [300, -300, 400, -400] {
+                let v = View::Direction(d.map(|c| Rational::from(c) * pow10(k)));
+                let s = solve(&m, &v);
+                let what = format!("{name} {d:?} x 10^{k}");
+                assert_eq!(s.curves.len(), base.curves.len(), "{what}");
+                assert_eq!(s.unresolved.len(), base.unresolved.len(), "{what}");
+                for (a, b) in s.curves.iter().zip(&base.curves) {
+                    assert_eq!(
+                        (a.closed, a.certified_topology),
+                        (b.closed, b.certified_topology),
+                        "{what}"
+                    );
+                }
+            }
+        }
+    }
+}

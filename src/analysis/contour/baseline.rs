@@ -76,7 +76,10 @@ fn node_values(
                             ];
                         }
                         match view {
-                            View::Direction(d) => dot(normal, d.clone().map(|c| c.to_f64())),
+                            View::Direction(d) => dot(
+                                normal,
+                                crate::analysis::view::working_direction(d).map(|c| c.to_f64()),
+                            ),
                             View::Eye(e) => dot(normal, sub(e.clone().map(|c| c.to_f64()), p)),
                         }
                     }

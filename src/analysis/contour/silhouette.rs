@@ -39,6 +39,7 @@ pub fn silhouette_function(patch: &RationalPatch, view: &View) -> Bernstein<Rati
     let n = patch.normal();
     match view {
         View::Direction(d) => {
+            let d = crate::analysis::view::working_direction(d);
             let terms: Vec<Bernstein<Rational>> = (0..3).map(|k| n[k].scale(&d[k])).collect();
             (&(&terms[0] + &terms[1]) + &terms[2]).reduce_degree_exact()
         }
