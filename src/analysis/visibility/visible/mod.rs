@@ -18,6 +18,13 @@
 //! (silhouette, boundary and occlusion curves) lies in the unresolved cells: the loops of the
 //! proven-visible cells and of the not-proven-hidden cells enclose it from inside and outside.
 //!
+//! [`visible_regions`] is a forward pipeline: `outline.rs` (the outline trees of every patch:
+//! contour and side boxes, with their image and depth bounds) → `cells.rs` (each patch's
+//! quadtree down to quiet or unresolved leaves, each blocked leaf with its [`crate::Reason`])
+//! → `patch_region` here (quiet leaves joined into regions, one ray test per region, the
+//! loops of `loops.rs`, the area bounds of `area.rs`) → with trimming, `trimming.rs` (the
+//! hidden-line drawing's visible outline lifted by `occlusion/` onto the surface behind).
+//!
 //! With [`VisibleOptions::trimming`] that boundary is also drawn, from a certified hidden-line
 //! drawing: each patch's visible silhouette and side pieces, and the occlusion curves of the
 //! visible outline in front of it, lifted onto it ([`TrimCurve`], `proofs/visible-regions.md`,
