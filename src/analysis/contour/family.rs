@@ -396,7 +396,17 @@ fn isolated_poles(
                         .any(|id| side_of(id).iter().any(|s| s.0 == e))
                 })
             });
-        if reached {
+        // Or a corner of any patch at this point (a patch whose side does not collapse there).
+        let at_corner = adj.corners.iter().enumerate().any(|(p, cs)| {
+            cs.iter().enumerate().any(|(k, &c)| {
+                c == point
+                    && tops[p]
+                        .arcs
+                        .iter()
+                        .any(|a| [a.from, a.to].iter().any(|id| corner_index(id) == Some(k)))
+            })
+        });
+        if reached || at_corner {
             continue;
         }
         let (axis, at_one) = side_axis(edge);
