@@ -229,8 +229,9 @@ mod tests {
 
     #[test]
     fn a_sign_below_f64_is_decided_up_the_ladder_and_counted() {
-        // A unit square in z = 0 seen along (0, 0, −10^-400): g = n·V = −10^-400 everywhere,
-        // which no f64 interval separates from 0; MPFR's exponent range does.
+        // A unit square in z = 0 seen from the eye (0, 0, 10^-400) just above it:
+        // g = n·(E − S) = 10^-400 everywhere, which no f64 interval separates from 0; MPFR's
+        // exponent range does. (A direction would be scaled into range first: `View::working`.)
         let p = |x: i64, y: i64| [Rational::from(x), Rational::from(y), Rational::new()];
         let sq =
             RationalPatch::polynomial([1, 1], vec![p(0, 0), p(0, 1), p(1, 0), p(1, 1)]).unwrap();
@@ -238,7 +239,7 @@ mod tests {
         for _ in 0..400 {
             tiny /= 10;
         }
-        let view = View::Direction([Rational::new(), Rational::new(), -tiny]);
+        let view = View::Eye([Rational::new(), Rational::new(), tiny]);
         let mut counts = Escalations::default();
         let ladder = Ladder::default();
         let f = super::facing(&sq, &view, &mut Policy::new(&ladder, &mut counts));
