@@ -43,8 +43,22 @@ pub(crate) struct Loaded {
     /// The tolerance in model units.
     pub(crate) tol_abs: Option<f64>,
 }
-/// Reads the model of a curve command and sets up the run (arguments already checked).
-pub(crate) fn load(path: &std::path::Path, run: &RunArgs) -> Result<Loaded, CliError> {
+impl Loaded {
+    /// Runs `f` on the run's threads: its value and the wall-clock milliseconds it took.
+    pub(crate) fn timed<T: Send>(&self, f: impl FnOnce() -> T + Send) -> (T, f64) {
+        let start = std::time::Instant::now();
+        let value = self.pool.install(f);
+        (value, start.elapsed().as_secs_f64() * 1e3)
+    }
+}
+/// Checks the output files (before any work: [`refuse_overwrite`]), reads the model of a
+/// command and sets up the run (its other arguments already checked).
+pub(crate) fn load(
+    path: &std::path::Path,
+    run: &RunArgs,
+    other_outputs: Option<&std::path::PathBuf>,
+) -> Result<Loaded, CliError> {
+    refuse_overwrite(run.output.iter().chain(other_outputs), run.force)?;
     let model = read_model(path).map_err(|e| CliError::input(e.to_string()))?;
     if model.patches.is_empty() {
         let faces: usize = model.meshes.iter().map(|m| m.faces.len()).sum();
@@ -122,12 +136,13 @@ pub(crate) fn silhouette_command(
     } = args;
     check_run_arguments(&run)?;
     let view = parse_view(view)?;
-    refuse_overwrite(run.output.iter().chain(&certificate), run.force)?;
     if certificate.is_some() && method != Method::Certified {
         return Err(CliError::input(
             "--certificate: only the certified method proves anything",
         ));
     }
+    let loaded = load(&model, &run, certificate.as_ref())?;
+    let start = std::time::Instant::now();
     let Loaded {
         name,
         model: m,
@@ -135,8 +150,7 @@ pub(crate) fn silhouette_command(
         opts,
         pool,
         tol_abs,
-    } = load(&model, &run)?;
-    let start = std::time::Instant::now();
+    } = loaded;
     let (s, report) = match method {
         Method::Certified => {
             let s = pool
@@ -191,7 +205,6 @@ pub(crate) fn curves_command(args: CurvesArgs, out: &mut dyn Write) -> Result<()
             "--dir: the direction must not be the zero vector",
         ));
     }
-    refuse_overwrite(run.output.iter(), run.force)?;
     let Loaded {
         name,
         model: m,
@@ -199,7 +212,7 @@ pub(crate) fn curves_command(args: CurvesArgs, out: &mut dyn Write) -> Result<()
         opts,
         pool,
         tol_abs,
-    } = load(&model, &run)?;
+    } = load(&model, &run, None)?;
     let start = std::time::Instant::now();
     let threads = pool.current_num_threads();
     let parabolic_curves: Silhouette;
@@ -266,7 +279,6 @@ pub(crate) fn events_command(args: EventsArgs, out: &mut dyn Write) -> Result<()
             }
         }
     }
-    refuse_overwrite(run.output.iter(), run.force)?;
     let Loaded {
         name,
         model: m,
@@ -274,7 +286,7 @@ pub(crate) fn events_command(args: EventsArgs, out: &mut dyn Write) -> Result<()
         opts,
         pool,
         tol_abs,
-    } = load(&model, &run)?;
+    } = load(&model, &run, None)?;
     let start = std::time::Instant::now();
     let deadline = opts.deadline;
     let eopts = EventOptions {
@@ -313,29 +325,19 @@ pub(crate) fn hlr_command(args: HlrArgs, out: &mut dyn Write) -> Result<(), CliE
     } = args;
     check_run_arguments(&run)?;
     let view = parse_view(view)?;
-    refuse_overwrite(run.output.iter(), run.force)?;
-    let Loaded {
-        name,
-        model: m,
-        weld,
-        opts,
-        pool,
-        tol_abs,
-    } = load(&model, &run)?;
-    let start = std::time::Instant::now();
+    let l = load(&model, &run, None)?;
     let hopts = HlrOptions {
-        curve: opts,
-        tol: tol_abs,
-        weld: Some(weld),
+        curve: l.opts.clone(),
+        tol: l.tol_abs,
+        weld: Some(l.weld),
         ..HlrOptions::default()
     };
-    let h = pool
-        .install(|| hidden_lines(&m, &view, &hopts))
-        .map_err(|e| CliError::input(format!("{name}: {e}")))?;
-    let ms = start.elapsed().as_secs_f64() * 1e3;
-    let report = HlrReport::new(&name, &view, &h, ms, pool.current_num_threads());
+    let (h, ms) = l.timed(|| hidden_lines(&l.model, &view, &hopts));
+    let h = h.map_err(|e| CliError::input(format!("{}: {e}", l.name)))?;
+    let (m, threads) = (&l.model, l.pool.current_num_threads());
+    let report = HlrReport::new(&l.name, &view, &h, ms, threads);
     let doc = WithResult { report, result: &h };
-    emit(&doc, format.into(), &m, &view, run.output, out)
+    emit(&doc, format.into(), m, &view, run.output, out)
 }
 /// `limn visible`.
 pub(crate) fn visible_command(args: VisibleArgs, out: &mut dyn Write) -> Result<(), CliError> {
@@ -354,30 +356,20 @@ pub(crate) fn visible_command(args: VisibleArgs, out: &mut dyn Write) -> Result<
     }
     check_run_arguments(&run)?;
     let view = parse_view(view)?;
-    refuse_overwrite(run.output.iter(), run.force)?;
-    let Loaded {
-        name,
-        model: m,
-        weld,
-        opts,
-        pool,
-        tol_abs,
-    } = load(&model, &run)?;
-    let start = std::time::Instant::now();
+    let l = load(&model, &run, None)?;
     let vopts = VisibleOptions {
-        curve: opts,
+        curve: l.opts.clone(),
         max_depth: cell_depth,
-        tol: tol_abs,
-        weld: Some(weld),
+        tol: l.tol_abs,
+        weld: Some(l.weld),
         ..VisibleOptions::default()
     };
-    let r = pool
-        .install(|| visible_regions(&m, &view, &vopts))
-        .map_err(|e| CliError::input(format!("{name}: {e}")))?;
-    let ms = start.elapsed().as_secs_f64() * 1e3;
-    let report = VisibleReport::new(&name, &view, &r, cells, ms, pool.current_num_threads());
+    let (r, ms) = l.timed(|| visible_regions(&l.model, &view, &vopts));
+    let r = r.map_err(|e| CliError::input(format!("{}: {e}", l.name)))?;
+    let threads = l.pool.current_num_threads();
+    let report = VisibleReport::new(&l.name, &view, &r, cells, ms, threads);
     let doc = WithResult { report, result: &r };
-    emit(&doc, format.into(), &m, &view, run.output, out)
+    emit(&doc, format.into(), &l.model, &view, run.output, out)
 }
 /// `limn check`.
 pub(crate) fn check_command(args: CheckArgs, out: &mut dyn Write) -> Result<(), CliError> {
