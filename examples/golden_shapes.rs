@@ -1,32 +1,12 @@
 //! Writes the exact test shapes of `limn::testing::shapes` as native JSON models into a
-//! folder, for the golden comparison (`tools/golden.py`) and for trying the CLI by hand.
+//! folder (written by `limn::io::write_model`), for the golden comparison (`tools/golden.py`) and for trying the CLI by hand.
 //!
 //! `cargo run --example golden_shapes -- DIR`
 
 use limn::number::Rational;
 use limn::surface::RationalPatch;
 use limn::testing::shapes;
-use serde_json::{json, Value};
 use std::path::PathBuf;
-
-fn model(patches: &[RationalPatch]) -> Value {
-    let patches: Vec<Value> = patches
-        .iter()
-        .map(|p| {
-            json!({
-                "kind": "bezier",
-                "degree": p.degree(),
-                "points": p
-                    .points()
-                    .iter()
-                    .map(|q| q.iter().map(|c| c.to_string()).collect::<Vec<_>>())
-                    .collect::<Vec<_>>(),
-                "weights": p.weights().iter().map(|w| w.to_string()).collect::<Vec<_>>(),
-            })
-        })
-        .collect();
-    json!({ "patches": patches })
-}
 
 fn main() {
     let Some(dir) = std::env::args().nth(1).map(PathBuf::from) else {
@@ -65,7 +45,7 @@ fn main() {
     ];
     for (name, patches) in models {
         let path = dir.join(format!("{name}.json"));
-        if let Err(e) = std::fs::write(&path, model(&patches).to_string()) {
+        if let Err(e) = std::fs::write(&path, limn::io::write_model(&patches)) {
             eprintln!("golden_shapes: {}: {e}", path.display());
             std::process::exit(2);
         }

@@ -54,7 +54,7 @@ pub use analysis::view::View;
 pub use analysis::visibility::hlr::{hidden_lines, HiddenLines, HlrOptions};
 pub use analysis::visibility::visible::{visible_regions, VisibleOptions, VisibleRegions};
 pub use error::Error;
-pub use io::{read_model, read_model_bytes};
+pub use io::{read_model, read_model_bytes, write_model};
 pub use model::Model;
 pub use reason::Reason;
 

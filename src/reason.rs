@@ -7,6 +7,7 @@
 //!
 //! [`Display`]: std::fmt::Display
 
+use crate::geometry::Rect;
 use crate::surface::Edge;
 use std::fmt;
 
@@ -48,8 +49,8 @@ pub enum Reason {
     CriticalPointUndecided {
         /// Whether it is the box's only critical point, proven.
         sole: bool,
-        /// `[lo, hi]`: the critical point's enclosure.
-        enclosure: [[f64; 2]; 2],
+        /// The critical point's enclosure.
+        enclosure: Rect,
     },
     /// Near a singular point of the curve exactly at `(u, v)`, whose branches are not resolved.
     SingularPointAt {
@@ -311,7 +312,10 @@ impl fmt::Display for Reason {
                 at[0],
                 at[1]
             ),
-            CriticalPointUndecided { sole, enclosure: [lo, hi] } => write!(
+            CriticalPointUndecided {
+                sole,
+                enclosure: Rect { lo, hi },
+            } => write!(
                 f,
                 "{} in [{:.3e}, {:.3e}] x [{:.3e}, {:.3e}] (Krawczyk), where g's enclosure contains 0: a singular point of the curve or a critical point just off it, not decided",
                 holds(*sole),

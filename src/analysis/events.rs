@@ -192,7 +192,7 @@ pub fn parabolic_events(model: &Model, parabolic: &Silhouette) -> Vec<SphereCurv
                         .collect();
                     ranges[piece.patch]
                         .as_ref()?
-                        .line_error(piece.cell[0], piece.cell[1], &|d| piece_error(d, &drawn))
+                        .line_error(piece.cell.lo, piece.cell.hi, &|d| piece_error(d, &drawn))
                 }))
             } else {
                 None

@@ -2,7 +2,8 @@
 //! `{"patches": [{"kind": "bezier", "degree": [m, n], "points": [[x, y, z], ...],
 //! "weights": [...]}, {"kind": "nurbs", "degree": [p, q], "knots_u": [...], "knots_v": [...],
 //! "points": [...], "weights": [...]}]}`. Numbers are JSON numbers or strings ("0.125",
-//! "1/3"), read exactly; weights default to 1.
+//! "1/3"), read exactly; weights default to 1. [`write_model`] writes Bézier patches in this
+//! format with every number an exact fraction string, so that reading gives them back.
 
 use super::{Place, ReadError};
 use crate::model::{Format, Model, ModelPatch, PatchSource};
@@ -243,4 +244,43 @@ pub(super) fn read(name: &str, text: &str) -> Result<Model, ReadError> {
         }
     }
     Ok(model)
+}
+
+/// The native JSON model of these Bézier patches, every coordinate and weight written as an
+/// exact fraction string (`"-3/4"`), so that [`read_model_bytes`](super::read_model_bytes)
+/// gives back the same patches (tested).
+///
+/// # Examples
+/// ```
+/// use limn::io::{read_model_bytes, write_model};
+/// use limn::model::Format;
+/// let text = br#"{"patches":[{"kind":"bezier","degree":[1,1],
+///     "points":[[0,0,0],[0,1,"1/3"],[1,0,0.1],[1,1,0]],"weights":[1,2,"3/7",1]}]}"#;
+/// let read = |t: &[u8]| read_model_bytes("m.json", t, Some(Format::Json)).unwrap();
+/// let patches: Vec<_> = read(text).patches.into_iter().map(|p| p.surface).collect();
+/// let written = write_model(&patches);
+/// assert!(written.contains(r#""1/3""#) && written.contains(r#""3/7""#));
+/// let back: Vec<_> = read(written.as_bytes()).patches.into_iter().map(|p| p.surface).collect();
+/// assert_eq!(back, patches);
+/// ```
+pub fn write_model(patches: &[RationalPatch]) -> String {
+    let strings = |xs: &mut dyn Iterator<Item = &Rational>| -> Vec<String> {
+        xs.map(|c| c.to_string()).collect()
+    };
+    let patches: Vec<Value> = patches
+        .iter()
+        .map(|p| {
+            serde_json::json!({
+                "kind": "bezier",
+                "degree": p.degree(),
+                "points": p
+                    .points()
+                    .iter()
+                    .map(|q| strings(&mut q.iter()))
+                    .collect::<Vec<_>>(),
+                "weights": strings(&mut p.weights().iter()),
+            })
+        })
+        .collect();
+    serde_json::json!({ "patches": patches }).to_string()
 }

@@ -18,6 +18,7 @@ mod teaset;
 mod text;
 
 pub use error::{Place, ReadError};
+pub use json::write_model;
 
 use crate::model::{Format, Model};
 use crate::surface::NurbsSurface;

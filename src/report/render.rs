@@ -119,8 +119,8 @@ pub fn silhouette_svg(model: &Model, view: &View, s: &Silhouette, title: &str) -
         .unresolved
         .iter()
         .map(|(p, cell, _)| {
-            let [lo, hi] = cell.to_f64();
-            proj.project(draw[*p].eval(0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])))
+            let [u, v] = cell.to_f64().center();
+            proj.project(draw[*p].eval(u, v))
         })
         .collect();
     let mut layers = vec![outline_layer(&draw, &proj)];

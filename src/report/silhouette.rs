@@ -3,6 +3,7 @@
 
 use crate::analysis::contour::curves::{Degenerate, Silhouette, SilhouetteCurve, SingularPoint};
 use crate::analysis::view::View;
+use crate::geometry::Rect;
 use crate::solver::Escalations;
 use crate::surface::Edge;
 use std::collections::BTreeMap;
@@ -14,8 +15,8 @@ pub struct UnresolvedSummary {
     pub patch: usize,
     /// The number of unresolved boxes.
     pub boxes: usize,
-    /// The (u, v) hull `[[u0, v0], [u1, v1]]` of those boxes.
-    pub hull: [[f64; 2]; 2],
+    /// The (u, v) hull of those boxes, written by its corners `[[u0, v0], [u1, v1]]`.
+    pub hull: Rect,
     /// Why (the reason of the first box).
     pub reason: String,
 }
@@ -147,7 +148,7 @@ impl SilhouetteReport {
         for u in &r.unresolved {
             t += &format!(
                 "unresolved: patch {}, {} boxes in [{:.6}, {:.6}] x [{:.6}, {:.6}]: {}\n",
-                u.patch, u.boxes, u.hull[0][0], u.hull[1][0], u.hull[0][1], u.hull[1][1], u.reason
+                u.patch, u.boxes, u.hull.lo[0], u.hull.hi[0], u.hull.lo[1], u.hull.hi[1], u.reason
             );
         }
         for e in &r.unjoined_edges {
@@ -219,18 +220,15 @@ impl SilhouetteReport {
     ) -> SilhouetteReport {
         let mut per_patch: BTreeMap<usize, UnresolvedSummary> = BTreeMap::new();
         for (p, cell, reason) in &s.unresolved {
-            let [lo, hi] = cell.to_f64();
+            let cell = cell.to_f64();
             let e = per_patch.entry(*p).or_insert_with(|| UnresolvedSummary {
                 patch: *p,
                 boxes: 0,
-                hull: [lo, hi],
+                hull: cell,
                 reason: reason.to_string(),
             });
             e.boxes += 1;
-            for k in 0..2 {
-                e.hull[0][k] = e.hull[0][k].min(lo[k]);
-                e.hull[1][k] = e.hull[1][k].max(hi[k]);
-            }
+            e.hull = e.hull.hull(&cell);
         }
         let topology_certified = s.topology_certified();
         SilhouetteReport {

@@ -1,5 +1,6 @@
 //! Exact dyadic numbers k / 2^e in [0, 1]: the coordinates of subdivision boxes.
 
+use crate::geometry::Rect;
 use crate::number::{Number, Precision, Rational};
 
 /// The deepest subdivision level (2^-60 of the unit interval).
@@ -153,12 +154,12 @@ impl DyadicBox {
         self.hi[axis].to_f64() - self.lo[axis].to_f64()
     }
 
-    /// The corners as `f64` pairs `[[u0, v0], [u1, v1]]`.
-    pub fn to_f64(&self) -> [[f64; 2]; 2] {
-        [
+    /// The box in `f64` (corners rounded to nearest: exact up to depth 53).
+    pub fn to_f64(&self) -> Rect {
+        Rect::new(
             [self.lo[0].to_f64(), self.lo[1].to_f64()],
             [self.hi[0].to_f64(), self.hi[1].to_f64()],
-        ]
+        )
     }
 }
 

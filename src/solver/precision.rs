@@ -107,6 +107,16 @@ impl<'a> Policy<'a> {
     pub fn new(ladder: &'a Ladder, counts: &'a mut Escalations) -> Policy<'a> {
         Policy { ladder, counts }
     }
+
+    /// [`Ladder::decide`] on this policy's ladder, counted in its tally.
+    pub fn decide<Q: Question>(&mut self, q: &Q) -> (Option<Q::Answer>, Option<Level>) {
+        self.ladder.decide(q, self.counts)
+    }
+
+    /// [`Ladder::escalate`] on this policy's ladder, counted in its tally.
+    pub fn escalate<Q: Question>(&mut self, q: &Q) -> (Option<Q::Answer>, Option<Level>) {
+        self.ladder.escalate(q, self.counts)
+    }
 }
 
 impl Ladder {

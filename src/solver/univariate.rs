@@ -9,7 +9,7 @@
 use crate::bernstein::Bernstein;
 use crate::number::{Certified, Interval, Number, Precision, Rational, Sign};
 use crate::solver::dyadic::{Dyadic, MAX_DEPTH};
-use crate::solver::precision::{Escalations, Ladder, Question};
+use crate::solver::precision::{Policy, Question};
 
 /// An isolated root.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
@@ -120,13 +120,8 @@ fn variations(signs: &[Sign]) -> usize {
 ///
 /// # Panics
 /// If `p` does not have exactly one variable.
-pub fn isolate_roots(
-    p: &Bernstein<Rational>,
-    ladder: &Ladder,
-    max_depth: u32,
-    stats: &mut Escalations,
-) -> Roots {
-    isolate_roots_in(p, Dyadic::ZERO, Dyadic::ONE, ladder, max_depth, stats)
+pub fn isolate_roots(p: &Bernstein<Rational>, max_depth: u32, policy: &mut Policy) -> Roots {
+    isolate_roots_in(p, Dyadic::ZERO, Dyadic::ONE, max_depth, policy)
 }
 
 /// Isolates the roots of `p` in `[lo, hi]` ⊂ [0, 1] (the same guarantees as
@@ -140,9 +135,8 @@ pub fn isolate_roots_in(
     p: &Bernstein<Rational>,
     lo: Dyadic,
     hi: Dyadic,
-    ladder: &Ladder,
     max_depth: u32,
-    stats: &mut Escalations,
+    policy: &mut Policy,
 ) -> Roots {
     assert_eq!(p.nvars(), 1, "univariate");
     assert!(lo < hi, "empty interval");
@@ -154,7 +148,7 @@ pub fn isolate_roots_in(
     let max_depth = max_depth.min(MAX_DEPTH);
     let n = p.degrees()[0];
     for t in [lo, hi] {
-        let s = match ladder.decide(&PointSign { p, t: vec![t] }, stats).0 {
+        let s = match policy.decide(&PointSign { p, t: vec![t] }).0 {
             Some(s) => s,
             None => Sign::Unknown,
         };
@@ -173,7 +167,7 @@ pub fn isolate_roots_in(
     while let Some((lo, hi, depth, coeffs)) = stack.pop() {
         let mut signs: Vec<Sign> = coeffs.coeffs().iter().map(|c| c.sign()).collect();
         if signs.iter().any(|s| !s.is_known()) {
-            match ladder.escalate(&CoefficientSigns { p, lo, hi }, stats).0 {
+            match policy.escalate(&CoefficientSigns { p, lo, hi }).0 {
                 Some(s) => signs = s,
                 None => {
                     out.unresolved.push((lo, hi));
@@ -181,7 +175,9 @@ pub fn isolate_roots_in(
                 }
             }
         } else {
-            stats.record(Some(crate::solver::precision::Level::F64));
+            policy
+                .counts
+                .record(Some(crate::solver::precision::Level::F64));
         }
         match variations(&signs) {
             0 => {}
@@ -199,8 +195,8 @@ pub fn isolate_roots_in(
                 let (left, right) = coeffs.subdivide_half(0);
                 let mid_sign = match left.coeffs()[n].sign() {
                     s if s.is_known() => s,
-                    _ => ladder
-                        .escalate(&PointSign { p, t: vec![mid] }, stats)
+                    _ => policy
+                        .escalate(&PointSign { p, t: vec![mid] })
                         .0
                         .unwrap_or(Sign::Unknown),
                 };
@@ -230,13 +226,7 @@ pub fn isolate_roots_in(
 /// (`proofs/bernstein-descartes.md`). The f64-interval coefficients of the current interval
 /// are carried down (enclosures, `proofs/de-casteljau-enclosure.md`); a sign they cannot decide
 /// is recomputed from the exact polynomial by the precision ladder.
-pub fn refine_root(
-    p: &Bernstein<Rational>,
-    root: Root,
-    width: f64,
-    ladder: &Ladder,
-    stats: &mut Escalations,
-) -> Root {
+pub fn refine_root(p: &Bernstein<Rational>, root: Root, width: f64, policy: &mut Policy) -> Root {
     let Root::Between { mut lo, mut hi } = root else {
         return root;
     };
@@ -249,8 +239,8 @@ pub fn refine_root(
         let (left, right) = coeffs.subdivide_half(0);
         let s_mid = match left.coeffs()[n].sign() {
             s if s.is_known() => s,
-            _ => ladder
-                .escalate(&PointSign { p, t: vec![mid] }, stats)
+            _ => policy
+                .escalate(&PointSign { p, t: vec![mid] })
                 .0
                 .unwrap_or(Sign::Unknown),
         };
@@ -263,9 +253,7 @@ pub fn refine_root(
         let signs = if fast.iter().all(|s| s.is_known()) {
             Some(fast)
         } else {
-            ladder
-                .escalate(&CoefficientSigns { p, lo, hi: mid }, stats)
-                .0
+            policy.escalate(&CoefficientSigns { p, lo, hi: mid }).0
         };
         match signs.map(|s| variations(&s)) {
             Some(1) => {
@@ -285,6 +273,7 @@ pub fn refine_root(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::solver::precision::{Escalations, Ladder};
 
     /// (t - r1)(t - r2)... in Bernstein form of the given degree, exactly.
     fn from_roots(roots: &[Rational]) -> Bernstein<Rational> {
@@ -317,7 +306,8 @@ mod tests {
         ];
         let p = from_roots(&roots);
         let mut stats = Escalations::default();
-        let r = isolate_roots(&p, &Ladder::default(), 60, &mut stats);
+        let ladder = Ladder::default();
+        let r = isolate_roots(&p, 60, &mut Policy::new(&ladder, &mut stats));
         assert!(r.unresolved.is_empty(), "{:?}", r.unresolved);
         assert_eq!(r.roots.len(), roots.len());
         for x in &roots {
@@ -338,7 +328,7 @@ mod tests {
             .iter()
             .find(|root| contains(root, &q(1, 3)))
             .unwrap();
-        let fine = refine_root(&p, *third, 1e-12, &Ladder::default(), &mut stats);
+        let fine = refine_root(&p, *third, 1e-12, &mut Policy::new(&ladder, &mut stats));
         assert!(contains(&fine, &q(1, 3)));
         assert!(fine.hi().to_f64() - fine.lo().to_f64() <= 1e-12);
     }
@@ -347,15 +337,13 @@ mod tests {
     fn double_root_is_unresolved_not_guessed() {
         let q = |a: i64, b: i64| Rational::from((a, b));
         let p = from_roots(&[q(1, 3), q(1, 3)]);
-        let r = isolate_roots(&p, &Ladder::default(), 20, &mut Escalations::default());
+        let (ladder, mut counts) = (Ladder::default(), Escalations::default());
+        let r = isolate_roots(&p, 20, &mut Policy::new(&ladder, &mut counts));
         assert!(r.roots.is_empty());
         assert_eq!(r.unresolved.len(), 1);
         let (a, b) = r.unresolved[0];
         assert!(a.to_rational() < q(1, 3) && q(1, 3) < b.to_rational());
         let zero = Bernstein::new(&[2], vec![Rational::new(); 3]).unwrap();
-        assert!(
-            isolate_roots(&zero, &Ladder::default(), 20, &mut Escalations::default())
-                .identically_zero
-        );
+        assert!(isolate_roots(&zero, 20, &mut Policy::new(&ladder, &mut counts)).identically_zero);
     }
 }

@@ -44,7 +44,12 @@ fn sphere_crossings_on_true_silhouette(
     for (p, t) in s.patches.iter().enumerate() {
         // The crossings of the arcs kept (arcs along collapsed sides are dropped).
         let kept: Vec<CrossingId> = t.arcs.iter().flat_map(|a| [a.from, a.to]).collect();
-        for (id, [lo, hi]) in t.locations.iter().filter(|(id, _)| kept.contains(id)) {
+        for (id, [lo, hi]) in t
+            .locations
+            .iter()
+            .filter(|(id, _)| kept.contains(id))
+            .map(|(id, r)| (id, r.corners()))
+        {
             let f = |x: [f64; 2]| {
                 let pt = m.patches[p].surface.eval(
                     &Rational::from_f64(x[0]).unwrap(),
@@ -54,7 +59,7 @@ fn sphere_crossings_on_true_silhouette(
                     .map(|k| Rational::from(&pt[k] * &v[k]))
                     .sum::<Rational>()
             };
-            let (a, b) = (f(*lo), f(*hi));
+            let (a, b) = (f(lo), f(hi));
             match id {
                 CrossingId::Exact { .. } => assert_eq!(a, 0),
                 CrossingId::Segment { .. } => {

@@ -14,19 +14,12 @@ fn tmp(name: &str) -> PathBuf {
 
 /// The exact sphere of radius 2 as a native JSON model, numbers written as exact fractions.
 fn sphere_json() -> PathBuf {
-    let patches: Vec<Value> = shapes::sphere(&Rational::from(2))
-        .iter()
-        .map(|p| {
-            serde_json::json!({
-                "kind": "bezier",
-                "degree": p.degree(),
-                "points": p.points().iter().map(|q| q.iter().map(|c| c.to_string()).collect::<Vec<_>>()).collect::<Vec<_>>(),
-                "weights": p.weights().iter().map(|w| w.to_string()).collect::<Vec<_>>(),
-            })
-        })
-        .collect();
     let path = tmp("sphere.json");
-    std::fs::write(&path, serde_json::json!({ "patches": patches }).to_string()).unwrap();
+    std::fs::write(
+        &path,
+        limn::io::write_model(&shapes::sphere(&Rational::from(2))),
+    )
+    .unwrap();
     path
 }
 

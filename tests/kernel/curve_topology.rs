@@ -62,7 +62,7 @@ fn closed_loops(t: &CurveTopology) -> usize {
 /// Every crossing's location box contains a point of the curve: the exact polynomial takes
 /// both signs (or zero) at the ends of the location along its line.
 fn crossings_are_on_the_curve(g: &Bernstein<Rational>, t: &CurveTopology) {
-    for (id, [lo, hi]) in &t.locations {
+    for (id, [lo, hi]) in t.locations.iter().map(|(id, r)| (id, r.corners())) {
         let val = |p: [f64; 2]| {
             g.eval(&[
                 Rational::from_f64(p[0]).unwrap(),
@@ -70,9 +70,9 @@ fn crossings_are_on_the_curve(g: &Bernstein<Rational>, t: &CurveTopology) {
             ])
         };
         match id {
-            CrossingId::Exact { .. } => assert_eq!(val(*lo), 0, "{id:?}"),
+            CrossingId::Exact { .. } => assert_eq!(val(lo), 0, "{id:?}"),
             CrossingId::Segment { .. } => {
-                let (a, b) = (val(*lo), val(*hi));
+                let (a, b) = (val(lo), val(hi));
                 assert!(Rational::from(&a * &b) <= 0, "{id:?}: {a} {b}");
                 assert!((hi[0] - lo[0]).max(hi[1] - lo[1]) <= 1e-9);
             }
@@ -162,7 +162,7 @@ fn a_node_is_reported_unresolved_not_guessed() {
     assert!(!t.is_certified());
     // The unresolved boxes are near the crossing (3/7, 3/7), and nowhere else.
     for u in &t.unresolved {
-        let [lo, hi] = u.cell.to_f64();
+        let [lo, hi] = u.cell.to_f64().corners();
         assert!(
             lo[0] <= 3.0 / 7.0 + 1e-3 && hi[0] >= 3.0 / 7.0 - 1e-3,
             "{:?}",
@@ -221,7 +221,8 @@ mod fuzz {
             if !t.is_certified() {
                 return Ok(());
             }
-            let roots = isolate_roots(&restricted, &Ladder::default(), 40, &mut Default::default());
+            let (ladder, mut counts) = (Ladder::default(), Default::default());
+            let roots = isolate_roots(&restricted, 40, &mut limn::solver::Policy::new(&ladder, &mut counts));
             prop_assume!(roots.unresolved.is_empty());
             let mut degree = std::collections::BTreeMap::new();
             for a in &t.arcs {
@@ -232,7 +233,7 @@ mod fuzz {
             let junctions: Vec<[[f64; 2]; 2]> = degree
                 .iter()
                 .filter(|(_, &d)| d >= 3)
-                .map(|(id, _)| t.locations[id])
+                .map(|(id, _)| t.locations[id].corners())
                 .collect();
             let interior: Vec<&Root> = roots
                 .roots
@@ -288,9 +289,9 @@ mod fuzz {
                 prop_assert!(t.branches.iter().all(|b| b.complete), "certified but incomplete: {:?}", t.branches);
             }
             for a in &t.arcs {
-                let [lo, hi] = a.cell.to_f64();
+                let [lo, hi] = a.cell.to_f64().corners();
                 for id in [a.from, a.to] {
-                    let [l, h] = t.locations[&id];
+                    let [l, h] = t.locations[&id].corners();
                     prop_assert!(l[0] >= lo[0] && h[0] <= hi[0] && l[1] >= lo[1] && h[1] <= hi[1], "crossing outside its arc's box");
                 }
             }
@@ -433,7 +434,7 @@ fn a_zero_line_at_a_non_dyadic_position_stays_unresolved() {
     assert!(c.lines.is_empty());
     assert!(!c.topology.is_certified());
     let near = c.topology.unresolved.iter().any(|r| {
-        let [lo, hi] = r.cell.to_f64();
+        let [lo, hi] = r.cell.to_f64().corners();
         lo[0] <= 1.0 / 3.0 && 1.0 / 3.0 <= hi[0] && lo[1] <= 1.0 / 3.0 && 1.0 / 3.0 <= hi[1]
     });
     assert!(near, "{:?}", c.topology.unresolved);
@@ -461,7 +462,7 @@ fn critical_points_in_undecided_boxes_are_classified() {
         .critical
         .iter()
         .filter(|c| {
-            (0..2).all(|k| c.enclosure[0][k] - 1e-15 <= x && x <= c.enclosure[1][k] + 1e-15)
+            (0..2).all(|k| c.enclosure.lo[k] - 1e-15 <= x && x <= c.enclosure.hi[k] + 1e-15)
         })
         .collect();
     assert_eq!(near.len(), 1, "{:?}", t.critical);
@@ -511,7 +512,7 @@ fn a_curve_touching_a_zero_line_is_not_certified_apart_from_it() {
     assert_eq!(c.lines.len(), 1);
     assert!(!c.topology.is_certified());
     assert!(c.topology.unresolved.iter().all(|u| {
-        let [lo, hi] = u.cell.to_f64();
+        let [lo, hi] = u.cell.to_f64().corners();
         lo[0] <= 0.5 && 0.5 <= hi[0] && lo[1] <= 0.25 && 0.25 <= hi[1]
     }));
 }

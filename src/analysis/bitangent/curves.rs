@@ -21,6 +21,7 @@ use crate::analysis::chords::space_curve::Accuracy;
 use crate::analysis::chords::sphere_curve::{largest, piece_error};
 use crate::error::Error;
 use crate::geometry::vec3::cross;
+use crate::geometry::Rect;
 use crate::model::Model;
 use crate::number::{Interval, Number, Rational};
 use crate::reason::Reason;
@@ -468,15 +469,15 @@ pub fn pair_bitangents(
             return BoxVerdict::Drop;
         }
         if same && depth >= 1 {
-            let lo = [lo1[0].min(lo2[0]), lo1[1].min(lo2[1])];
-            let hi = [hi1[0].max(hi2[0]), hi1[1].max(hi2[1])];
-            if hi[0] - lo[0] <= 0.5 && hi[1] - lo[1] <= 0.5 && sides[0].jets.excludes(lo, hi) {
+            let h = Rect::new(lo1, hi1).hull(&Rect::new(lo2, hi2));
+            if h.width(0) <= 0.5 && h.width(1) <= 0.5 && sides[0].jets.excludes(h.lo, h.hi) {
                 return BoxVerdict::Drop;
             }
         }
         if depth >= 1
             && seams.iter().any(|side| {
-                seam_excludes(&sides[0].jets, &sides[1].jets, side, (lo1, hi1), (lo2, hi2))
+                let (b1, b2) = (Rect::new(lo1, hi1), Rect::new(lo2, hi2));
+                seam_excludes(&sides[0].jets, &sides[1].jets, side, b1, b2)
             })
         {
             return BoxVerdict::Drop;

@@ -21,6 +21,7 @@ use crate::analysis::chords::plane_curve::{div, range_enclosing, restrict_enclos
 use crate::analysis::chords::space_curve::deflate_common;
 use crate::analysis::projection::lift;
 use crate::bernstein::Bernstein;
+use crate::geometry::Rect;
 use crate::number::margin;
 use crate::number::{Interval, Number, Precision, Rational};
 use crate::surface::RationalPatch;
@@ -408,18 +409,9 @@ impl SharedSide {
     }
 
     /// A box of `R` mapped (exactly: the maps only flip and shift by 0, 1 or 2) to the
-    /// composite plane, as `(lo, hi)`.
-    fn box_to(
-        &self,
-        lo: [f64; 2],
-        hi: [f64; 2],
-        f: impl Fn(&Self, [f64; 2]) -> [f64; 2],
-    ) -> ([f64; 2], [f64; 2]) {
-        let (a, b) = (f(self, lo), f(self, hi));
-        (
-            [a[0].min(b[0]), a[1].min(b[1])],
-            [a[0].max(b[0]), a[1].max(b[1])],
-        )
+    /// composite plane (`to_composite`) or back (`from_composite`).
+    fn box_to(&self, b: &Rect, f: impl Fn(&Self, [f64; 2]) -> [f64; 2]) -> Rect {
+        Rect::point(f(self, b.lo)).hull(&Rect::point(f(self, b.hi)))
     }
 
     /// The derivative of `R`'s parameters by the composite ones: `∂r_k/∂x_j = sign` for the
@@ -520,29 +512,22 @@ pub fn seam_excludes(
     first: &DiagonalTest,
     second: &DiagonalTest,
     side: &SharedSide,
-    b1: ([f64; 2], [f64; 2]),
-    b2: ([f64; 2], [f64; 2]),
+    b1: Rect,
+    b2: Rect,
 ) -> bool {
-    let (c_lo, c_hi) = side.box_to(b2.0, b2.1, SharedSide::to_composite);
+    let c = side.box_to(&b2, SharedSide::to_composite);
     // Widened by more than the rounding of `1 − r` in the maps, so that the parts cover both
     // boxes.
-    let lo = [b1.0[0].min(c_lo[0]) - 1e-14, b1.0[1].min(c_lo[1]) - 1e-14];
-    let hi = [b1.1[0].max(c_hi[0]) + 1e-14, b1.1[1].max(c_hi[1]) + 1e-14];
-    if hi[0] - lo[0] > 0.5 || hi[1] - lo[1] > 0.5 {
+    let both = b1.hull(&c).grown(1e-14);
+    if both.width(0) > 0.5 || both.width(1) > 0.5 {
         return false;
     }
     // The part on S's square and the part on R's.
-    let q1 = (
-        [lo[0].max(0.0), lo[1].max(0.0)],
-        [hi[0].min(1.0), hi[1].min(1.0)],
-    );
-    let (r_lo, r_hi) = side.box_to(lo, hi, SharedSide::from_composite);
-    let q2 = (
-        [r_lo[0].max(0.0), r_lo[1].max(0.0)],
-        [r_hi[0].min(1.0), r_hi[1].min(1.0)],
-    );
+    let clip = |b: Rect| Rect::new(b.lo.map(|x| x.max(0.0)), b.hi.map(|x| x.min(1.0)));
+    let q1 = clip(both);
+    let q2 = clip(side.box_to(&both, SharedSide::from_composite));
     // A frame about the normal at the middle of the first part.
-    let Some(n) = first.normal_range(q1.0, q1.1) else {
+    let Some(n) = first.normal_range(q1.lo, q1.hi) else {
         return false;
     };
     let a = n.map(|x| 0.5 * (x.lo() + x.hi()));
@@ -568,10 +553,10 @@ pub fn seam_excludes(
         a[0] * e1[1] - a[1] * e1[0],
     ];
     let frame = [a, e1, e2];
-    let Some(j1) = first.gauss_jacobian(q1.0, q1.1, &frame) else {
+    let Some(j1) = first.gauss_jacobian(q1.lo, q1.hi, &frame) else {
         return false;
     };
-    let Some(jr) = second.gauss_jacobian(q2.0, q2.1, &frame) else {
+    let Some(jr) = second.gauss_jacobian(q2.lo, q2.hi, &frame) else {
         return false;
     };
     // R's Jacobian in composite coordinates: column j is ∂/∂r_k times ∂r_k/∂x_j.

@@ -2,6 +2,7 @@
 //! world-space tolerance of the true curve (`proofs/chord-accuracy.md`).
 
 use crate::bernstein::Bernstein;
+use crate::geometry::Rect;
 use crate::number::margin;
 use crate::number::{Interval, Number, Precision, Rational, Sign};
 use crate::solver::plane_curve::Arc;
@@ -370,12 +371,12 @@ impl PatchAccuracy {
     /// would need many vertices is halved first (its halves get tighter bounds), the others
     /// get uniformly spaced certified vertices, each checked against the bound with its own
     /// certified error and slope.
-    pub fn trace(&self, arc: &Arc, from: [[f64; 2]; 2], to: [[f64; 2]; 2], tol: f64) -> Traced {
+    pub fn trace(&self, arc: &Arc, from: Rect, to: Rect, tol: f64) -> Traced {
         let graph = arc.kind.monotone_axis();
         self.trace_in(arc.cell.to_f64(), graph, from, to, tol)
     }
 
-    /// As [`PatchAccuracy::trace`], for the arc in the box `cell` (`[lo, hi]` in (u, v)) that is
+    /// As [`PatchAccuracy::trace`], for the arc in the box `cell` in (u, v) that is
     /// the graph `m = φ(o)` (`graph = Some(m)`, `∂g/∂m` of strict sign on the box), or for a
     /// line of constant u or v from the centre of `from` to the centre of `to` (`graph =
     /// None`: the coordinate that stays constant is the one the ends agree in; the box is
@@ -384,15 +385,13 @@ impl PatchAccuracy {
     /// (`proofs/chord-accuracy.md`, "The ends").
     pub fn trace_in(
         &self,
-        cell: [[f64; 2]; 2],
+        cell: Rect,
         graph: Option<usize>,
-        from: [[f64; 2]; 2],
-        to: [[f64; 2]; 2],
+        from: Rect,
+        to: Rect,
         tol: f64,
     ) -> Traced {
-        let center = |b: [[f64; 2]; 2]| [0.5 * (b[0][0] + b[1][0]), 0.5 * (b[0][1] + b[1][1])];
-        let half = |b: [[f64; 2]; 2], k: usize| 0.5 * (b[1][k] - b[0][k]);
-        let (p0, p1) = (center(from), center(to));
+        let (p0, p1) = (from.center(), to.center());
         let (m, on_edge) = match graph {
             Some(m) => (m, false),
             // Along a line: the varying coordinate is the one the ends differ in.
@@ -406,11 +405,8 @@ impl PatchAccuracy {
             ),
         };
         let o = 1 - m;
-        let [blo, bhi] = if on_edge {
-            [
-                [p0[0].min(p1[0]), p0[1].min(p1[1])],
-                [p0[0].max(p1[0]), p0[1].max(p1[1])],
-            ]
+        let Rect { lo: blo, hi: bhi } = if on_edge {
+            Rect::point(p0).hull(&Rect::point(p1))
         } else {
             cell
         };
@@ -427,15 +423,19 @@ impl PatchAccuracy {
         let (Some(phi1), Some(l_m)) = (phi1, self.surface.bounds(blo, bhi, m).map(|b| b[0])) else {
             return fail(p0, p1);
         };
-        let end_delta = |b: [[f64; 2]; 2]| half(b, m) + phi1 * half(b, o);
+        let end_delta = |b: Rect| b.half_width(m) + phi1 * b.half_width(o);
         // The true arc ends anywhere in its crossing's location box, which may extend beyond
         // the end vertex's level: that end piece lies in the box grown by Φ₁ in m, within
         // L·(δ + half-extent in o) of the vertex in space, L bounding |∂S/∂m| and |∂S/∂o|.
         let Some(l_o) = self.surface.bounds(blo, bhi, o).map(|b| b[0]) else {
             return fail(p0, p1);
         };
-        let end_piece =
-            |b: [[f64; 2]; 2]| margin::up(l_m.max(l_o) * (end_delta(b) + half(b, o)), margin::MANY);
+        let end_piece = |b: Rect| {
+            margin::up(
+                l_m.max(l_o) * (end_delta(b) + b.half_width(o)),
+                margin::MANY,
+            )
+        };
         let worst = end_piece(from).max(end_piece(to));
         if worst > tol {
             return fail(p0, p1);
@@ -457,11 +457,11 @@ impl PatchAccuracy {
         let n = tracer.verts.len();
         // The end pieces: from the end vertex's level to the true end, anywhere in its
         // location box, the arc stays within the vertex's `end_delta` in m.
-        let end = |b: [[f64; 2]; 2], v: Vertex| {
+        let end = |b: Rect, v: Vertex| {
             let mut lo = [0.0; 2];
             let mut hi = [0.0; 2];
-            lo[o] = b[0][o];
-            hi[o] = b[1][o];
+            lo[o] = b.lo[o];
+            hi[o] = b.hi[o];
             let r = margin::up(v.2, margin::MANY);
             lo[m] = Interval::point(v.1)
                 .sub(&Interval::point(r))
@@ -471,7 +471,7 @@ impl PatchAccuracy {
                 .add(&Interval::point(r))
                 .hi()
                 .min(bhi[m]);
-            [lo, hi]
+            Rect::new(lo, hi)
         };
         let mut pieces = vec![(end(from, tracer.verts[0]), 0, 0)];
         pieces.extend(tracer.pieces.iter().map(|&(b, i)| (b, i, i + 1)));
@@ -492,10 +492,10 @@ pub struct Traced {
     /// The largest chord bound `E`; `None` if the tolerance was not met within the budget or
     /// a bound could not be computed.
     pub bound: Option<f64>,
-    /// With a bound: boxes `[lo, hi]` in (u, v) that cover the arc, each with the range
+    /// With a bound: boxes in (u, v) that cover the arc, each with the range
     /// `first..=last` of the vertices it also holds: one per chord (its two vertices) and one
     /// per end (the piece beyond the end vertex's level, up to the true end).
-    pub pieces: Vec<([[f64; 2]; 2], usize, usize)>,
+    pub pieces: Vec<(Rect, usize, usize)>,
 }
 
 /// A vertex: (o level, m value, δ = certified error of the m value at that level).
@@ -522,7 +522,7 @@ struct Tracer<'a> {
     worst: f64,
     /// Per chord whose bound was accepted: a box holding it and its piece of the arc, and
     /// the index of its first vertex (the second is the next).
-    pieces: Vec<([[f64; 2]; 2], usize)>,
+    pieces: Vec<(Rect, usize)>,
 }
 
 impl Tracer<'_> {
@@ -574,7 +574,7 @@ impl Tracer<'_> {
         parent_sb: Option<[f64; 4]>,
     ) -> Option<(f64, f64, [f64; 4])> {
         let m = self.m;
-        let [lo, hi] = self.piece_box(a, b, phi1);
+        let Rect { lo, hi } = self.piece_box(a, b, phi1);
         let (p1, p2) = if self.on_edge {
             (0.0, 0.0)
         } else {
@@ -592,7 +592,7 @@ impl Tracer<'_> {
     /// A box of the arc's box that holds the arc piece between vertices a and b and both
     /// vertices: between their levels in o, and within `δ + Φ₁·h` of both in m (`phi1`
     /// bounds |φ'| on a box containing the piece), with a relative margin for rounding.
-    fn piece_box(&self, a: Vertex, b: Vertex, phi1: f64) -> [[f64; 2]; 2] {
+    fn piece_box(&self, a: Vertex, b: Vertex, phi1: f64) -> Rect {
         let (m, o) = (self.m, 1 - self.m);
         let h = (b.0 - a.0).abs();
         let reach = margin::up(a.2.max(b.2) + phi1 * h, margin::MANY);
@@ -607,7 +607,7 @@ impl Tracer<'_> {
             .add(&Interval::point(reach))
             .hi()
             .min(self.bhi[m]);
-        [lo, hi]
+        Rect::new(lo, hi)
     }
 
     /// Adds the vertices strictly between a and b (a is already in `verts`); false if the

@@ -136,8 +136,8 @@ pub(crate) fn chain_model(
             }
             let a = &tops[p].arcs[k];
             // Without a trace, the arc's box holds the arc and all its drawing points.
-            let [lo, hi] = a.cell.to_f64();
-            let whole = |n: usize| vec![([lo, hi], 0, n - 1)];
+            let cell = a.cell.to_f64();
+            let whole = |n: usize| vec![(cell, 0, n - 1)];
             let (mut pts, mut local) = match traced.as_ref().map(|t| &t[p][k]) {
                 Some(Some(t)) => {
                     match t.bound {
@@ -212,13 +212,13 @@ pub(crate) fn chain_model(
         .iter()
         .filter(|(_, arcs)| arcs.len() >= 3)
         .map(|(&(p, id), arcs)| {
-            let [lo, hi] = tops[p].locations[&id];
-            let uv = [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])];
+            let cell = tops[p].locations[&id];
+            let uv = cell.center();
             SingularPoint {
                 patch: p,
                 uv,
                 point: draw[p].eval(uv[0], uv[1]),
-                cell: [lo, hi],
+                cell,
                 exact: matches!(id, CrossingId::Exact { .. }),
                 branches: arcs.len(),
             }

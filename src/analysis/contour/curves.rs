@@ -3,6 +3,7 @@
 //! cases and what is unresolved.
 
 use crate::bernstein::Bernstein;
+use crate::geometry::Rect;
 use crate::number::Rational;
 use crate::solver::plane_curve::zero_lines::ZeroLine;
 use crate::solver::{CrossingId, CurveTopology, Escalations};
@@ -63,8 +64,8 @@ pub struct SilhouetteCurve {
 pub struct CurvePiece {
     /// The patch.
     pub patch: usize,
-    /// `[lo, hi]` in (u, v).
-    pub cell: [[f64; 2]; 2],
+    /// The box in (u, v).
+    pub cell: Rect,
     /// The first drawn point it holds (an index into `points_uv`).
     pub first: usize,
     /// The last.
@@ -162,9 +163,10 @@ pub struct SingularPoint {
     pub uv: [f64; 2],
     /// The point in space.
     pub point: [f64; 3],
-    /// A box in (u, v) that contains it, `[[u0, v0], [u1, v1]]` (a point if exact).
+    /// A box in (u, v) that contains it, written by its corners `[[u0, v0], [u1, v1]]` (a
+    /// point if exact).
     #[serde(rename = "box")]
-    pub cell: [[f64; 2]; 2],
+    pub cell: Rect,
     /// Its parameters are exact dyadic numbers.
     pub exact: bool,
     /// The number of curve arcs that end at it (0: an isolated point of the curve, such as a

@@ -2,6 +2,7 @@
 //! arc between its certified crossings (the patch's f64 evaluation is [`crate::surface::float_eval`]).
 
 use crate::bernstein::Bernstein;
+use crate::geometry::Rect;
 use crate::model::Model;
 use crate::solver::{CurveOptions, CurveTopology};
 
@@ -43,7 +44,7 @@ pub(crate) fn densify(
         }
     };
     let o = 1 - m;
-    let [lo, hi] = a.cell.to_f64();
+    let Rect { lo, hi } = a.cell.to_f64();
     let mut pts = vec![p0];
     for i in 1..steps {
         let s = p0[o] + (p1[o] - p0[o]) * i as f64 / steps as f64;

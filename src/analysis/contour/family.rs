@@ -14,6 +14,7 @@ use crate::analysis::contour::sides::{
     both_on, corner_index, deflate_side_counted, side_axis, side_of,
 };
 use crate::bernstein::Bernstein;
+use crate::geometry::Rect;
 use crate::model::{Model, PatchAdjacency, WeldTolerance};
 use crate::number::{Precision, Rational};
 use crate::solver::plane_curve::zero_lines::{add_line, solve_curve_lines, LinedCurve, ZeroLine};
@@ -412,9 +413,9 @@ fn isolated_poles(
         let (axis, at_one) = side_axis(edge);
         let mut uv = [0.5, 0.5];
         uv[axis] = if at_one { 1.0 } else { 0.0 };
-        let mut cell = [[0.0, 0.0], [1.0, 1.0]];
-        cell[0][axis] = uv[axis];
-        cell[1][axis] = uv[axis];
+        let mut cell = Rect::UNIT;
+        cell.lo[axis] = uv[axis];
+        cell.hi[axis] = uv[axis];
         let q = |x: f64| Rational::from_f64(x).unwrap_or_default();
         let p = patches[patch].eval(&q(uv[0]), &q(uv[1]));
         out.push(SingularPoint {

@@ -7,6 +7,7 @@ use crate::analysis::contour::sides::{
     both_on, corner_index, side_axis, side_crossings, side_of, side_point, side_polynomial,
 };
 use crate::bernstein::Bernstein;
+use crate::geometry::Rect;
 use crate::model::SideUse;
 use crate::number::Rational;
 use crate::solver::plane_curve::zero_lines::{add_line, line_point};
@@ -81,7 +82,7 @@ pub(crate) fn parallel_normals(
         return false;
     }
     let dot = &(&(&a[0] * &b[0]) + &(&a[1] * &b[1])) + &(&a[2] * &b[2]);
-    let roots = crate::solver::isolate_roots(&dot, policy.ladder, 40, policy.counts);
+    let roots = crate::solver::isolate_roots(&dot, 40, policy);
     // A normal vanishing exactly at an end of the edge is a corner, which is joined by vertex
     // identity and excluded from the side's crossings: only interior zeros matter.
     let interior = |r: &crate::solver::Root| !matches!(r, crate::solver::Root::At { t } if *t == Dyadic::ZERO || *t == Dyadic::ONE);
@@ -198,8 +199,7 @@ pub(crate) fn ends_at_edge(
             if lo == hi {
                 return other.eval(&[lo.to_rational()]).cmp0() != std::cmp::Ordering::Equal;
             }
-            let r =
-                crate::solver::isolate_roots_in(other, lo, hi, policy.ladder, 40, policy.counts);
+            let r = crate::solver::isolate_roots_in(other, lo, hi, 40, policy);
             r.roots.is_empty() && r.unresolved.is_empty() && !r.identically_zero
         })
     };
@@ -378,7 +378,7 @@ pub(crate) fn join_zero_side(
         for id in [from, to] {
             if let CrossingId::Exact { u, v } = id {
                 let p = [u.to_f64(), v.to_f64()];
-                ta.locations.insert(id, [p, p]);
+                ta.locations.insert(id, Rect::point(p));
             }
         }
         ta.arcs.push(crate::solver::plane_curve::Arc {

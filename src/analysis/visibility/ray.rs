@@ -29,6 +29,7 @@ use crate::analysis::visibility::scene::{ratio_bounds, ImageBounds, Scene};
 use crate::analysis::visibility::sheets::{fold_box, fold_box_around, injective_box, range_on};
 use crate::bernstein::Bernstein;
 use crate::bernstein::Poly;
+use crate::geometry::Rect;
 use crate::number::{Interval, Number, Precision, Rational};
 use crate::reason::Reason;
 use crate::solver::dyadic::Dyadic;
@@ -96,16 +97,16 @@ struct PointSystem {
 }
 
 impl Sample {
-    /// An enclosure of the sample's parameters on its patch, `[lo, hi]` per parameter.
-    pub fn uv_enclosure(&self) -> [[f64; 2]; 2] {
+    /// An enclosure of the sample's parameters on its patch (rounded outwards).
+    pub fn uv_enclosure(&self) -> Rect {
         let r = |q: &Rational| [q.lower_f64(), q.upper_f64()];
         match self {
-            Sample::Exact { uv, .. } => [r(&uv[0]), r(&uv[1])],
+            Sample::Exact { uv, .. } => Rect::from_axes(r(&uv[0]), r(&uv[1])),
             Sample::Silhouette {
                 axis, at, interval, ..
             } => {
-                let mut out = [r(at), r(at)];
-                out[1 - axis] = [interval[0].lower_f64(), interval[1].upper_f64()];
+                let mut out = Rect::from_axes(r(at), r(at));
+                out.set_axis(1 - axis, [interval[0].lower_f64(), interval[1].upper_f64()]);
                 out
             }
         }
@@ -176,9 +177,8 @@ pub fn layers_in_front(scene: &Scene, sample: &Sample, opts: &RayOptions) -> Res
 pub struct Hit {
     /// Its patch.
     pub patch: usize,
-    /// An enclosure of its parameters, `[lo, hi]` per variable (the only point of the patch
-    /// on the ray in it).
-    pub uv: [[f64; 2]; 2],
+    /// An enclosure of its parameters (the only point of the patch on the ray in it).
+    pub uv: Rect,
     /// An enclosure of its depth.
     pub depth: [f64; 2],
 }
@@ -404,7 +404,7 @@ fn hits_on_ray(
             if !inside_domain || near_excluded {
                 behind = Err(near());
             } else if let Ok(b) = &mut behind {
-                let uv = [root.enclosure[ps.nvars], root.enclosure[ps.nvars + 1]];
+                let uv = Rect::from_axes(root.enclosure[ps.nvars], root.enclosure[ps.nvars + 1]);
                 b.push(Hit {
                     patch: j,
                     uv,
@@ -426,9 +426,8 @@ fn hits_on_ray(
 }
 
 /// An enclosure of `depth / w` on a parameter box (`w > 0`).
-fn depth_on(depth: &Poly, w: &Poly, uv: [[f64; 2]; 2]) -> [f64; 2] {
-    let (lo, hi) = ([uv[0][0], uv[1][0]], [uv[0][1], uv[1][1]]);
-    let on = |p: &Poly| range_on(&p.convert(Precision::F64), &lo, &hi);
+fn depth_on(depth: &Poly, w: &Poly, uv: Rect) -> [f64; 2] {
+    let on = |p: &Poly| range_on(&p.convert(Precision::F64), &uv.lo, &uv.hi);
     match on(depth).checked_div(&on(w)) {
         Some(d) => [d.lo(), d.hi()],
         None => [f64::NEG_INFINITY, f64::INFINITY],
@@ -441,7 +440,7 @@ mod tests {
     use crate::analysis::view::View;
     use crate::model::Format;
     use crate::model::{Model, WeldTolerance};
-    use crate::solver::precision::Ladder;
+    use crate::solver::precision::{Ladder, Policy};
     use crate::solver::univariate::{isolate_roots, refine_root, Root};
     use crate::surface::RationalPatch;
     use crate::testing::shapes;
@@ -526,10 +525,11 @@ mod tests {
             for k in 1..8 {
                 let at = q(k, 8);
                 let line = fix_axis(&g, 0, &at);
-                let roots = isolate_roots(&line, &Ladder::default(), 40, &mut Default::default());
+                let (ladder, mut counts) = (Ladder::default(), Default::default());
+                let mut policy = Policy::new(&ladder, &mut counts);
+                let roots = isolate_roots(&line, 40, &mut policy);
                 for r in roots.roots {
-                    let r =
-                        refine_root(&line, r, 1e-12, &Ladder::default(), &mut Default::default());
+                    let r = refine_root(&line, r, 1e-12, &mut policy);
                     if let Root::Between { lo, hi } = r {
                         let interval = [lo.to_rational(), hi.to_rational()];
                         out.push(Sample::Silhouette {

@@ -8,19 +8,20 @@
 //! undecided (an irrational critical point where g's enclosure contains zero).
 
 use crate::bernstein::Bernstein;
+use crate::geometry::Rect;
 use crate::number::{Interval, Precision, Rational};
 use crate::reason::Reason;
 use crate::solver::dyadic::{Dyadic, DyadicBox};
-use crate::solver::precision::{Escalations, Ladder};
+use crate::solver::precision::Policy;
 use crate::solver::system::{simplest_rational, solve_system, SystemOptions};
 
 /// An isolated critical point of g, with what is known of g there.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct CriticalPoint {
-    /// A box `[lo, hi]` in (u, v) that contains it.
-    pub enclosure: [[f64; 2]; 2],
+    /// A box in (u, v) that contains it.
+    pub enclosure: Rect,
     /// The box where it is the only zero of the gradient (Krawczyk's test).
-    pub unique_in: [[f64; 2]; 2],
+    pub unique_in: Rect,
     /// Its exact rational coordinates, when it is an exact singular point of the curve.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub exact: Option<[String; 2]>,
@@ -32,29 +33,24 @@ pub struct CriticalPoint {
 impl CriticalPoint {
     /// Whether it lies in the closed box.
     pub fn in_box(&self, b: &DyadicBox) -> bool {
-        let [lo, hi] = b.to_f64();
-        (0..2).all(|k| lo[k] <= self.enclosure[1][k] && self.enclosure[0][k] <= hi[k])
+        b.to_f64().meets(&self.enclosure)
     }
 
     /// Why an undecided box near it is undecided, in words. The box is said to hold the only
     /// critical point of g in it only when the point's enclosure lies inside the box and the
     /// box inside the region where the point is the gradient's only zero.
     pub fn reason(&self, cell: &DyadicBox) -> Reason {
-        let [lo, hi] = self.enclosure;
-        let [clo, chi] = cell.to_f64();
-        let inside = |a: [[f64; 2]; 2], b: [[f64; 2]; 2]| {
-            (0..2).all(|k| b[0][k] <= a[0][k] && a[1][k] <= b[1][k])
-        };
-        let sole = inside(self.enclosure, [clo, chi]) && inside([clo, chi], self.unique_in);
+        let cell = cell.to_f64();
+        let sole = cell.contains(&self.enclosure) && self.unique_in.contains(&cell);
         match (&self.on_curve, &self.exact) {
             (Some(true), Some(uv)) => Reason::SingularPointAt { uv: uv.clone() },
             (Some(false), _) => Reason::CriticalPointOffCurve {
                 sole,
-                at: [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])],
+                at: self.enclosure.center(),
             },
             _ => Reason::CriticalPointUndecided {
                 sole,
-                enclosure: [lo, hi],
+                enclosure: self.enclosure,
             },
         }
     }
@@ -95,15 +91,14 @@ fn clusters(boxes: &[DyadicBox]) -> Vec<DyadicBox> {
 pub fn critical_points(
     g: &Bernstein<Rational>,
     boxes: &[DyadicBox],
-    ladder: &Ladder,
-    counts: &mut Escalations,
+    policy: &mut Policy,
 ) -> Vec<CriticalPoint> {
     let (gu, gv) = (g.deriv(0), g.deriv(1));
     let opts = SystemOptions {
         max_depth: 12,
         max_boxes: 500,
         refine_width: 1e-13,
-        ladder: *ladder,
+        ladder: *policy.ladder,
     };
     let mut out: Vec<CriticalPoint> = Vec::new();
     for b in clusters(boxes).iter().take(MAX_CLUSTERS) {
@@ -114,22 +109,11 @@ pub fn critical_points(
             &domain,
             &opts,
         );
-        counts.merge(&roots.escalations);
+        policy.counts.merge(&roots.escalations);
         for r in roots.roots {
-            let e = [
-                [r.enclosure[0][0], r.enclosure[1][0]],
-                [r.enclosure[0][1], r.enclosure[1][1]],
-            ];
-            let u = [
-                [r.unique_in[0][0], r.unique_in[1][0]],
-                [r.unique_in[0][1], r.unique_in[1][1]],
-            ];
-            let same = |c: &CriticalPoint| {
-                let inside = |a: &[[f64; 2]; 2], o: &[[f64; 2]; 2]| {
-                    (0..2).all(|k| o[0][k] <= a[0][k] && a[1][k] <= o[1][k])
-                };
-                inside(&e, &c.unique_in) || inside(&c.enclosure, &u)
-            };
+            let e = Rect::from_axes(r.enclosure[0], r.enclosure[1]);
+            let u = Rect::from_axes(r.unique_in[0], r.unique_in[1]);
+            let same = |c: &CriticalPoint| c.unique_in.contains(&e) || u.contains(&c.enclosure);
             if out.iter().any(same) {
                 continue;
             }
@@ -143,8 +127,8 @@ fn classify(
     g: &Bernstein<Rational>,
     gu: &Bernstein<Rational>,
     gv: &Bernstein<Rational>,
-    enclosure: [[f64; 2]; 2],
-    unique_in: [[f64; 2]; 2],
+    enclosure: Rect,
+    unique_in: Rect,
 ) -> CriticalPoint {
     let mut cp = CriticalPoint {
         enclosure,
@@ -153,11 +137,13 @@ fn classify(
         on_curve: None,
     };
     let (Some(lo), Some(hi)) = (
-        enclosure[0]
+        enclosure
+            .lo
             .iter()
             .map(|&x| rational(x))
             .collect::<Option<Vec<_>>>(),
-        enclosure[1]
+        enclosure
+            .hi
             .iter()
             .map(|&x| rational(x))
             .collect::<Option<Vec<_>>>(),

@@ -8,7 +8,7 @@ use crate::solver::plane_curve::segments::{uv, Lines, SegmentRoots};
 use crate::solver::plane_curve::topology::Arc;
 use crate::solver::plane_curve::ArcKind;
 use crate::solver::plane_curve::CrossingId;
-use crate::solver::precision::Escalations;
+use crate::solver::precision::Policy;
 use crate::solver::univariate::{refine_root, Root};
 
 /// One thing that happens along the o-axis of a graph box: a root of g on one of the two
@@ -168,15 +168,8 @@ pub(crate) fn graph_box_arcs(
             if let (CrossingId::Segment { fixed, c, .. }, true) = (e.id, is_open(e)) {
                 let p = lines.poly(fixed, c).clone();
                 let w = 0.5 * (e.hi.to_f64() - e.lo.to_f64());
-                let mut stats = Escalations::default();
-                let r = refine_root(
-                    &p,
-                    Root::Between { lo: e.lo, hi: e.hi },
-                    w,
-                    &lines.opts.ladder,
-                    &mut stats,
-                );
-                lines.stats.merge(&stats);
+                let mut policy = Policy::new(&lines.opts.ladder, &mut lines.stats);
+                let r = refine_root(&p, Root::Between { lo: e.lo, hi: e.hi }, w, &mut policy);
                 if (r.lo(), r.hi()) != (e.lo, e.hi) {
                     // Narrow the interval only: the crossing keeps its canonical (atomic
                     // segment) name, which the neighbouring box uses too.

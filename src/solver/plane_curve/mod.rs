@@ -28,7 +28,7 @@ use crate::solver::plane_curve::box_signs::{strict_sign, ESCALATION_DEPTH};
 use crate::solver::plane_curve::critical_points::critical_points;
 use crate::solver::plane_curve::graph_boxes::{graph_box_arcs, Touches};
 use crate::solver::plane_curve::segments::{integer_multiple, locate, on_square_boundary, Lines};
-use crate::solver::precision::{Escalations, Ladder};
+use crate::solver::precision::{Escalations, Ladder, Policy};
 use std::collections::{BTreeMap, BTreeSet};
 
 /// Budgets and precision policy of the curve solver.
@@ -249,7 +249,7 @@ pub fn solve_curve_cut(
     // candidates for singular points of the curve) and say what they are.
     if !out.unresolved.is_empty() && !opts.past_deadline() {
         let boxes: Vec<DyadicBox> = out.unresolved.iter().map(|u| u.cell).collect();
-        out.critical = critical_points(g, &boxes, &opts.ladder, &mut stats);
+        out.critical = critical_points(g, &boxes, &mut Policy::new(&opts.ladder, &mut stats));
         for u in &mut out.unresolved {
             if let Some(cp) = out.critical.iter().find(|cp| cp.in_box(&u.cell)) {
                 u.reason = cp.reason(&u.cell);

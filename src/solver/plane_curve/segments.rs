@@ -3,10 +3,11 @@
 //! of any sizes name the same crossing identically.
 
 use crate::bernstein::Bernstein;
+use crate::geometry::Rect;
 use crate::number::{Interval, Number, Precision, Rational, Sign};
 use crate::solver::dyadic::Dyadic;
 use crate::solver::plane_curve::{CrossingId, CurveOptions};
-use crate::solver::precision::{Escalations, Level};
+use crate::solver::precision::{Escalations, Level, Policy};
 use crate::solver::univariate::{isolate_roots_in, refine_root, PointSign, Root};
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -154,9 +155,13 @@ impl<'a> Lines<'a> {
         let depth = self.opts.max_depth.saturating_add(16);
         let ladder = self.opts.ladder;
         let p = self.poly(fixed, c).clone();
-        let mut stats = Escalations::default();
-        let roots = isolate_roots_in(&p, s0, s1, &ladder, depth, &mut stats);
-        self.stats.merge(&stats);
+        let roots = isolate_roots_in(
+            &p,
+            s0,
+            s1,
+            depth,
+            &mut Policy::new(&ladder, &mut self.stats),
+        );
         let r = if roots.identically_zero {
             SegmentRoots::Zero
         } else if !roots.unresolved.is_empty() {
@@ -176,14 +181,11 @@ impl<'a> Lines<'a> {
 }
 /// Where a crossing is, refined to `refine_width`: a box in (u, v) and, for a crossing inside
 /// a segment, the exact isolating interval along its line.
-pub(crate) fn locate(
-    lines: &mut Lines,
-    id: CrossingId,
-) -> ([[f64; 2]; 2], Option<(Dyadic, Dyadic)>) {
+pub(crate) fn locate(lines: &mut Lines, id: CrossingId) -> (Rect, Option<(Dyadic, Dyadic)>) {
     match id {
         CrossingId::Exact { u, v } => {
             let ((u0, u1), (v0, v1)) = (u.to_f64_bounds(), v.to_f64_bounds());
-            ([[u0, v0], [u1, v1]], None)
+            (Rect::new([u0, v0], [u1, v1]), None)
         }
         CrossingId::Segment {
             fixed,
@@ -195,15 +197,8 @@ pub(crate) fn locate(
             let (dlo, dhi) = match lines.segment(fixed, c, s0, s1) {
                 SegmentRoots::Roots(r) if k < r.len() => {
                     let p = lines.poly(fixed, c).clone();
-                    let mut stats = Escalations::default();
-                    let fine = refine_root(
-                        &p,
-                        r[k],
-                        lines.opts.refine_width,
-                        &lines.opts.ladder,
-                        &mut stats,
-                    );
-                    lines.stats.merge(&stats);
+                    let mut policy = Policy::new(&lines.opts.ladder, &mut lines.stats);
+                    let fine = refine_root(&p, r[k], lines.opts.refine_width, &mut policy);
                     (fine.lo(), fine.hi())
                 }
                 _ => (s0, s1),
@@ -211,9 +206,9 @@ pub(crate) fn locate(
             let (lo, hi) = (dlo.to_f64_bounds().0, dhi.to_f64_bounds().1);
             let (c0, c1) = c.to_f64_bounds();
             let location = if fixed == 0 {
-                [[c0, lo], [c1, hi]]
+                Rect::new([c0, lo], [c1, hi])
             } else {
-                [[lo, c0], [hi, c1]]
+                Rect::new([lo, c0], [hi, c1])
             };
             (location, Some((dlo, dhi)))
         }

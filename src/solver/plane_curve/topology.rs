@@ -2,6 +2,7 @@
 //! between crossings, branches, the cells of the subdivision, unresolved boxes; and the
 //! chaining of arcs into branches.
 
+use crate::geometry::Rect;
 use crate::number::Sign;
 use crate::reason::Reason;
 use crate::solver::dyadic::{Dyadic, DyadicBox};
@@ -132,8 +133,8 @@ pub struct CurveTopology {
     pub branches: Vec<Branch>,
     /// The arcs (one per box and component piece).
     pub arcs: Vec<Arc>,
-    /// Where each crossing is: a box `[lo, hi]` in (u, v) containing it (a point if exact).
-    pub locations: BTreeMap<CrossingId, [[f64; 2]; 2]>,
+    /// Where each crossing is: a box in (u, v) containing it (a point if exact).
+    pub locations: BTreeMap<CrossingId, Rect>,
     /// For each crossing inside a segment, the exact interval `[lo, hi]` of the free variable
     /// that contains it and no other root of g on its line (a point if the root is dyadic).
     pub intervals: BTreeMap<CrossingId, (Dyadic, Dyadic)>,
@@ -162,8 +163,7 @@ impl CurveTopology {
 
     /// A representative (u, v) of a crossing (the centre of its location box).
     pub fn point(&self, id: &CrossingId) -> [f64; 2] {
-        let [lo, hi] = self.locations[id];
-        [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])]
+        self.locations[id].center()
     }
 }
 /// Chains arcs into branches through shared crossings.

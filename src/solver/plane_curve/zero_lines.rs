@@ -11,12 +11,13 @@
 //! crossings are joined across patches).
 
 use crate::bernstein::Bernstein;
+use crate::geometry::Rect;
 use crate::number::Rational;
 use crate::reason::Reason;
 use crate::solver::dyadic::{Dyadic, DyadicBox};
 use crate::solver::plane_curve::ArcKind;
 use crate::solver::plane_curve::{Arc, CrossingId, CurveTopology};
-use crate::solver::precision::{Escalations, Ladder};
+use crate::solver::precision::{Escalations, Policy};
 use crate::solver::univariate::{isolate_roots, refine_root, Root};
 
 /// Lines are looked for at dyadic positions with denominators up to 2^MAX_LINE_EXP.
@@ -70,12 +71,13 @@ fn fibre(g: &Bernstein<Rational>, axis: usize, k: usize) -> Bernstein<Rational> 
 /// use limn::bernstein::Bernstein;
 /// use limn::number::Rational;
 /// use limn::solver::plane_curve::zero_lines::divide_zero_lines;
-/// use limn::solver::{Escalations, Ladder};
+/// use limn::solver::{Escalations, Ladder, Policy};
 /// // g = (u − 1/2)(u + v − 1), degree (2, 1): vanishes on the line u = 1/2.
 /// let half = Rational::from((1, 2));
 /// let lin = Bernstein::new(&[1, 0], vec![-half.clone(), half]).unwrap();
 /// let diag = Bernstein::new(&[1, 1], [-1, 0, 0, 1].map(Rational::from).to_vec()).unwrap();
-/// let (k, lines) = divide_zero_lines(&(&lin * &diag), 24, &Ladder::default(), &mut Escalations::default());
+/// let (ladder, mut counts) = (Ladder::default(), Escalations::default());
+/// let (k, lines) = divide_zero_lines(&(&lin * &diag), 24, &mut Policy::new(&ladder, &mut counts));
 /// assert_eq!(k, diag);
 /// assert_eq!(lines.len(), 1);
 /// assert_eq!(lines[0].to_string(), "u=1/2");
@@ -83,8 +85,7 @@ fn fibre(g: &Bernstein<Rational>, axis: usize, k: usize) -> Bernstein<Rational> 
 pub fn divide_zero_lines(
     g: &Bernstein<Rational>,
     max_exp: u32,
-    ladder: &Ladder,
-    stats: &mut Escalations,
+    policy: &mut Policy,
 ) -> (Bernstein<Rational>, Vec<ZeroLine>) {
     let max_exp = max_exp.min(MAX_LINE_EXP);
     let mut g = g.clone();
@@ -103,11 +104,11 @@ pub fn divide_zero_lines(
         if f.degrees()[0] == 0 {
             continue;
         }
-        let roots = isolate_roots(&f, ladder, max_exp, stats);
+        let roots = isolate_roots(&f, max_exp, policy);
         let width = (-(max_exp as f64)).exp2();
         let mut candidates: Vec<Dyadic> = Vec::new();
         for r in roots.roots {
-            if let Root::At { t } = refine_root(&f, r, width, ladder, stats) {
+            if let Root::At { t } = refine_root(&f, r, width, policy) {
                 candidates.push(t);
             }
         }
@@ -176,19 +177,12 @@ pub fn add_line(t: &mut CurveTopology, fixed: usize, c: Dyadic, at: &[Dyadic]) {
         .filter(|id| on_line(t, id, fixed, c).is_some())
         .collect();
     for id in passing {
-        let [lo, hi] = t
-            .locations
-            .get(&id)
-            .copied()
-            .unwrap_or([[0.0; 2], [1.0; 2]]);
+        let location = t.locations.get(&id).copied().unwrap_or(Rect::UNIT);
         let cells: Vec<DyadicBox> = t
             .cells
             .iter()
             .map(|cell| cell.cell)
-            .filter(|b| {
-                let [blo, bhi] = b.to_f64();
-                (0..2).all(|k| blo[k] <= hi[k] && lo[k] <= bhi[k])
-            })
+            .filter(|b| b.to_f64().meets(&location))
             .collect();
         for cell in cells {
             t.unresolved.push(crate::solver::plane_curve::Unresolved {
@@ -222,7 +216,7 @@ pub fn add_line(t: &mut CurveTopology, fixed: usize, c: Dyadic, at: &[Dyadic]) {
     for &(_, _, id) in &nodes {
         if let CrossingId::Exact { u, v } = id {
             let p = [u.to_f64(), v.to_f64()];
-            t.locations.entry(id).or_insert([p, p]);
+            t.locations.entry(id).or_insert(Rect::point(p));
         }
     }
     for w in nodes.windows(2) {
@@ -275,7 +269,11 @@ pub fn solve_curve_lines(
 ) -> LinedCurve {
     // A line deeper than the subdivision may go cannot be made a grid line: not divided.
     let mut stats = Escalations::default();
-    let (quotient, lines) = divide_zero_lines(g, opts.max_depth, &opts.ladder, &mut stats);
+    let (quotient, lines) = divide_zero_lines(
+        g,
+        opts.max_depth,
+        &mut Policy::new(&opts.ladder, &mut stats),
+    );
     let cuts: Vec<(usize, Dyadic)> = lines.iter().map(|z| (z.axis, z.at)).collect();
     let mut solved = crate::solver::solve_curve_cut(&quotient, &cuts, opts);
     solved.escalations.merge(&stats);

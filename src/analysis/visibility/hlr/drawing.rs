@@ -6,6 +6,7 @@
 use crate::analysis::chords::plane_curve::PatchAccuracy;
 use crate::analysis::contour::drawing::zero_across;
 use crate::analysis::visibility::hlr::lines::Segment;
+use crate::geometry::Rect;
 use crate::number::margin;
 use crate::number::{Number, Precision, Rational};
 use crate::surface::DrawPatch;
@@ -74,15 +75,10 @@ pub(super) fn draw_points(s: &Segment, draw: &DrawPatch, p0: f64, p1: f64, steps
 /// on a line, the line over the end's interval; on an arc, the box of the segment's vertex at
 /// its own end (the true end lies in it), else the end's interval in the parameter times a
 /// certified bracket of the arc's other coordinate at the interval's centre.
-fn end_box(s: &Segment, acc: &PatchAccuracy, end: PieceEnd) -> Option<[[f64; 2]; 2]> {
-    let hull = |a: [f64; 2], b: [f64; 2]| {
-        [
-            [a[0].min(b[0]), a[1].min(b[1])],
-            [a[0].max(b[0]), a[1].max(b[1])],
-        ]
-    };
+fn end_box(s: &Segment, acc: &PatchAccuracy, end: PieceEnd) -> Option<Rect> {
     if s.constraint.is_none() {
-        return Some(hull(line_uv(s, end.at[0])?, line_uv(s, end.at[1])?));
+        let (a, b) = (line_uv(s, end.at[0])?, line_uv(s, end.at[1])?);
+        return Some(Rect::point(a).hull(&Rect::point(b)));
     }
     let (o, m) = (s.axis, 1 - s.axis);
     if end.segment_end {
@@ -95,16 +91,16 @@ fn end_box(s: &Segment, acc: &PatchAccuracy, end: PieceEnd) -> Option<[[f64; 2];
         let (_, lo, hi) = v.uv.iter().find(|x| x.0 == s.patch)?;
         let down = |q: &Rational| q.lower_f64();
         let up = |q: &Rational| q.upper_f64();
-        return Some([[down(&lo[0]), down(&lo[1])], [up(&hi[0]), up(&hi[1])]]);
+        return Some(Rect::new(lo.each_ref().map(down), hi.each_ref().map(up)));
     }
     let level = 0.5 * (end.at[0] + end.at[1]);
     let (m0, m1) = (s.domain[m].0.to_f64(), s.domain[m].1.to_f64());
     let (x, y) = acc.bracket(m, m0, m1, level)?;
-    let mut b = [[0.0; 2]; 2];
-    b[0][o] = end.at[0];
-    b[1][o] = end.at[1];
-    b[0][m] = x;
-    b[1][m] = y;
+    let mut b = Rect::point([0.0; 2]);
+    b.lo[o] = end.at[0];
+    b.hi[o] = end.at[1];
+    b.lo[m] = x;
+    b.hi[m] = y;
     Some(b)
 }
 
@@ -123,7 +119,7 @@ pub(super) fn traced_points(
     let graph = s.constraint.as_ref().map(|_| 1 - s.axis);
     // The arc's box (a line's box is its ends', taken by the tracer).
     let cell = if s.domain.len() == 2 {
-        [
+        Rect::new(
             [
                 s.domain[0].0.to_f64_bounds().0,
                 s.domain[1].0.to_f64_bounds().0,
@@ -132,9 +128,9 @@ pub(super) fn traced_points(
                 s.domain[0].1.to_f64_bounds().1,
                 s.domain[1].1.to_f64_bounds().1,
             ],
-        ]
+        )
     } else {
-        [a[0], b[1]]
+        Rect::new(a.lo, b.hi)
     };
     let traced = acc.trace_in(cell, graph, a, b, tol);
     let chords = traced.bound?;

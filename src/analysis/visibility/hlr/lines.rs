@@ -12,7 +12,7 @@ use crate::analysis::visibility::scene::{ratio_bounds, ImageBounds, Scene};
 use crate::bernstein::Bernstein;
 use crate::number::{Interval, Precision, Rational, Sign};
 use crate::solver::dyadic::Dyadic;
-use crate::solver::precision::{Escalations, Ladder};
+use crate::solver::precision::Policy;
 use crate::solver::system::DyadicBoxN;
 use crate::solver::univariate::{isolate_roots_in, refine_root};
 use crate::solver::CrossingId;
@@ -26,11 +26,10 @@ use crate::bernstein::Poly;
 pub(super) fn candidate_lines(
     scene: &Scene,
     sil: &Silhouette,
-    ladder: &Ladder,
-    stats: &mut Escalations,
+    policy: &mut Policy,
 ) -> Vec<Segment> {
     let mut segments = boundary_segments(scene);
-    let arcs = silhouette_segments(scene, sil, &mut segments, ladder, stats);
+    let arcs = silhouette_segments(scene, sil, &mut segments, policy);
     let first_chain = segments.len() + arcs.iter().map(|a| a.chain).max().unwrap_or(0) + 1;
     let lines = zero_line_segments(scene, sil, &mut segments, &arcs, first_chain);
     segments.extend(arcs);
@@ -288,12 +287,8 @@ pub(super) fn crossing_vertex(
     axis: usize,
 ) -> Vertex {
     let loc = topo.locations[id];
-    let param = [loc[0][axis], loc[1][axis]];
-    let own = (
-        i,
-        [rat(loc[0][0]), rat(loc[0][1])],
-        [rat(loc[1][0]), rat(loc[1][1])],
-    );
+    let param = loc.axis(axis);
+    let own = (i, loc.lo.map(rat), loc.hi.map(rat));
     // A patch corner.
     if let CrossingId::Exact { u, v } = id {
         let at = |d: &Dyadic| *d == Dyadic::ZERO || *d == Dyadic::ONE;
@@ -360,8 +355,7 @@ fn silhouette_segments(
     scene: &Scene,
     sil: &Silhouette,
     boundary: &mut [Segment],
-    ladder: &Ladder,
-    stats: &mut Escalations,
+    policy: &mut Policy,
 ) -> Vec<Segment> {
     let mut out = Vec::new();
     let mut chain = boundary.len();
@@ -396,7 +390,7 @@ fn silhouette_segments(
                     }
                 };
                 let (pa, pb) = (topo.locations[a], topo.locations[b]);
-                let range = [pa[0][axis].min(pb[0][axis]), pa[1][axis].max(pb[1][axis])];
+                let range = pa.hull(&pb).axis(axis);
                 // The cell, narrowed along the parameter to the arc's extent: other arcs of
                 // the same cell (each meets a parameter line once) lie outside it.
                 let mut domain: DyadicBoxN = vec![
@@ -443,7 +437,7 @@ fn silhouette_segments(
                 };
                 // Along the branch, vertex a comes first.
                 let forward = whole.vertices[0].param[0] <= whole.range[0];
-                let mut pieces = split_monotone(whole, 6, &mut next_id, ladder, stats);
+                let mut pieces = split_monotone(whole, 6, &mut next_id, policy);
                 if !forward {
                     pieces.reverse();
                 }
@@ -466,8 +460,7 @@ pub(super) fn split_monotone(
     s: Segment,
     depth: u32,
     next_id: &mut usize,
-    ladder: &Ladder,
-    stats: &mut Escalations,
+    policy: &mut Policy,
 ) -> Vec<Segment> {
     if s.monotone.is_some() || depth == 0 {
         return vec![s];
@@ -486,11 +479,11 @@ pub(super) fn split_monotone(
     // The arc's point on the line axis = mid: the only root of g there in the cell.
     let m = 1 - s.axis;
     let line = fix_axis(&g, s.axis, &mid.to_rational());
-    let roots = isolate_roots_in(&line, s.domain[m].0, s.domain[m].1, ladder, 40, stats);
+    let roots = isolate_roots_in(&line, s.domain[m].0, s.domain[m].1, 40, policy);
     if roots.roots.len() != 1 || !roots.unresolved.is_empty() {
         return vec![s];
     }
-    let r = refine_root(&line, roots.roots[0], 1e-12, ladder, stats);
+    let r = refine_root(&line, roots.roots[0], 1e-12, policy);
     let mut lo_uv = [mid.to_rational(), mid.to_rational()];
     let mut hi_uv = lo_uv.clone();
     lo_uv[m] = r.lo().to_rational();
@@ -525,8 +518,8 @@ pub(super) fn split_monotone(
     *next_id += 1;
     let low = half([s.range[0], c], (lo, mid), true);
     let high = half([c, s.range[1]], (mid, hi), false);
-    let mut out = split_monotone(low, depth - 1, next_id, ladder, stats);
-    out.extend(split_monotone(high, depth - 1, next_id, ladder, stats));
+    let mut out = split_monotone(low, depth - 1, next_id, policy);
+    out.extend(split_monotone(high, depth - 1, next_id, policy));
     out
 }
 

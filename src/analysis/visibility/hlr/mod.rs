@@ -151,7 +151,11 @@ pub fn hidden_lines(model: &Model, view: &View, opts: &HlrOptions) -> Result<Hid
         ..HlrStats::default()
     };
     // 1. The candidate lines, cut into segments.
-    let segments = candidate_lines(&scene, &sil, &opts.curve.ladder, &mut stats.escalations);
+    let segments = candidate_lines(
+        &scene,
+        &sil,
+        &mut Policy::new(&opts.curve.ladder, &mut stats.escalations),
+    );
     stats.segments = segments.len();
     // 2. Which stretches of them are outline.
     let roles = line_roles(&scene, &segments, opts);

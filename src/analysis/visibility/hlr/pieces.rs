@@ -18,7 +18,7 @@ use crate::analysis::visibility::scene::Scene;
 use crate::model::Model;
 use crate::number::Rational;
 use crate::reason::Reason;
-use crate::solver::precision::{Escalations, Ladder};
+use crate::solver::precision::{Escalations, Policy};
 use crate::solver::univariate::{isolate_roots_in, refine_root, Root};
 use crate::surface::DrawPatch;
 use rayon::prelude::*;
@@ -292,7 +292,11 @@ pub(crate) fn qi_of(
         let Some(c) = dyadic_between(p0 + a * w, p0 + b * w) else {
             continue;
         };
-        let Some(sample) = sample_at(s, &c, &opts.curve.ladder, &mut tally.escalations) else {
+        let Some(sample) = sample_at(
+            s,
+            &c,
+            &mut Policy::new(&opts.curve.ladder, &mut tally.escalations),
+        ) else {
             continue;
         };
         tally.samples += 1;
@@ -314,12 +318,7 @@ pub(crate) fn qi_of(
     Err(last)
 }
 /// The sample point of a segment at parameter `c`.
-pub(crate) fn sample_at(
-    s: &Segment,
-    c: &Rational,
-    ladder: &Ladder,
-    stats: &mut Escalations,
-) -> Option<Sample> {
+pub(crate) fn sample_at(s: &Segment, c: &Rational, policy: &mut Policy) -> Option<Sample> {
     if let Some((axis, at)) = s.line {
         let mut uv = [at.to_rational(), at.to_rational()];
         uv[1 - axis] = c.clone();
@@ -334,11 +333,11 @@ pub(crate) fn sample_at(
             let m = 1 - s.axis;
             let line = fix_axis(g, s.axis, c);
             let (lo, hi) = s.domain[m];
-            let roots = isolate_roots_in(&line, lo, hi, ladder, 40, stats);
+            let roots = isolate_roots_in(&line, lo, hi, 40, policy);
             if roots.roots.len() != 1 || !roots.unresolved.is_empty() {
                 return None;
             }
-            let r = refine_root(&line, roots.roots[0], 1e-12, ladder, stats);
+            let r = refine_root(&line, roots.roots[0], 1e-12, policy);
             let Root::Between { lo, hi } = r else {
                 return None;
             };

@@ -3,6 +3,7 @@
 
 use crate::analysis::visibility::facing::Facing;
 use crate::analysis::visibility::ray::Hit;
+use crate::geometry::Rect;
 use crate::reason::Reason;
 use crate::solver::precision::Escalations;
 use crate::surface::Edge;
@@ -56,8 +57,8 @@ pub struct HlrPiece {
 pub struct Behind {
     /// The sample: the patch of the piece and an enclosure of its parameters there.
     pub patch: usize,
-    /// `[lo, hi]` per parameter (a point for a sample on a side or a line).
-    pub uv: [[f64; 2]; 2],
+    /// The enclosure (a point for a sample on a side or a line).
+    pub uv: Rect,
     /// The first point of the model behind the sample (`None`: nothing, the background), or
     /// why it is not proven.
     pub first: Result<Option<Hit>, Reason>,

@@ -11,6 +11,7 @@ use crate::analysis::visibility::visible::outline::{
 };
 use crate::analysis::visibility::visible::VisibleOptions;
 use crate::bernstein::Bernstein;
+use crate::geometry::Rect;
 use crate::number::Interval;
 use crate::number::{Precision, Rational, Sign};
 use crate::reason::Reason;
@@ -78,11 +79,12 @@ struct CellBox {
     j: u32,
     /// A box around the cell, in the patch's square, on which its image map is injective
     /// (computed when first needed).
-    own: OnceCell<Option<([f64; 2], [f64; 2])>>,
+    own: OnceCell<Option<Rect>>,
 }
 
-fn within(lo: [f64; 2], hi: [f64; 2], b: &([f64; 2], [f64; 2])) -> bool {
-    (0..2).all(|k| b.0[k] <= lo[k] && hi[k] <= b.1[k])
+/// Whether the box `[lo, hi]` (a node's) lies in `b`.
+fn within(lo: [f64; 2], hi: [f64; 2], b: &Rect) -> bool {
+    b.contains(&Rect::new(lo, hi))
 }
 
 /// The leaves of patch `p`'s quadtree.
@@ -256,8 +258,7 @@ fn own_excluded(ctx: &Context, p: usize, cell: &CellBox, t: &Tree, n: &Node) -> 
             } else {
                 (n.lo[0], n.hi[0])
             };
-            let (lo, hi) = side_box(e, a, b);
-            within(lo, hi, own)
+            own.contains(&side_box(e, a, b))
         }),
         TreeKind::Region => false,
     }
@@ -276,7 +277,7 @@ fn in_fold_block(ctx: &Context, p: usize, cell: &CellBox, n: &Node) -> bool {
         let unit = 0.5f64.powi(level as i32);
         let (a0, a1) = (a.saturating_sub(1), (a + 1).min(last));
         let (b0, b1) = (b.saturating_sub(1), (b + 1).min(last));
-        let block = (
+        let block = Rect::new(
             [a0 as f64 * unit, b0 as f64 * unit],
             [(a1 + 1) as f64 * unit, (b1 + 1) as f64 * unit],
         );
@@ -296,7 +297,8 @@ fn in_fold_block(ctx: &Context, p: usize, cell: &CellBox, n: &Node) -> bool {
                 dyadic_rational(a0 + a1 + 1, level + 1),
                 dyadic_rational(b0 + b1 + 1, level + 1),
             ];
-            let h = fold_polys(ctx, p, &mid).is_some_and(|f| f.holds_within(&block.0, &block.1, 2));
+            let h =
+                fold_polys(ctx, p, &mid).is_some_and(|f| f.holds_within(&block.lo, &block.hi, 2));
             folds.blocks.lock().expect("no poisoning").insert(key, h);
             h
         });
@@ -335,13 +337,13 @@ fn dyadic_rational(num: u32, shift: u32) -> Rational {
 }
 
 /// The parameter box of a side's stretch `[a, b]`.
-fn side_box(e: crate::surface::Edge, a: f64, b: f64) -> ([f64; 2], [f64; 2]) {
+fn side_box(e: crate::surface::Edge, a: f64, b: f64) -> Rect {
     use crate::surface::Edge;
     match e {
-        Edge::V0 => ([a, 0.0], [b, 0.0]),
-        Edge::V1 => ([a, 1.0], [b, 1.0]),
-        Edge::U0 => ([0.0, a], [0.0, b]),
-        Edge::U1 => ([1.0, a], [1.0, b]),
+        Edge::V0 => Rect::new([a, 0.0], [b, 0.0]),
+        Edge::V1 => Rect::new([a, 1.0], [b, 1.0]),
+        Edge::U0 => Rect::new([0.0, a], [0.0, b]),
+        Edge::U1 => Rect::new([1.0, a], [1.0, b]),
     }
 }
 

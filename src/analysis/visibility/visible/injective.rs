@@ -11,6 +11,7 @@
 
 use crate::analysis::visibility::visible::outline::quarters;
 use crate::bernstein::Bernstein;
+use crate::geometry::Rect;
 use crate::number::{Interval, Number};
 
 type IPoly = Bernstein<Interval>;
@@ -66,7 +67,7 @@ impl JacobianGrid {
     /// A box of grid boxes around the cell `(i, j)` at `level`, reaching at least one cell
     /// width beyond each of its sides (clipped to the square), on which the image map is
     /// injective; failing that, the grid boxes covering the cell; or `None`.
-    pub(super) fn around(&self, level: u32, i: u32, j: u32) -> Option<([f64; 2], [f64; 2])> {
+    pub(super) fn around(&self, level: u32, i: u32, j: u32) -> Option<Rect> {
         let side = 1i64 << self.level;
         // The cell's span of grid boxes.
         let (a0, a1, b0, b1, grow) = if level >= self.level {
@@ -84,7 +85,7 @@ impl JacobianGrid {
             let c = |x: i64| x.clamp(0, side - 1) as usize;
             let (i0, i1, j0, j1) = (c(a0 - g), c(a1 + g), c(b0 - g), c(b1 + g));
             if self.regular(i0, i1, j0, j1) {
-                return Some((
+                return Some(Rect::new(
                     [i0 as f64 * unit, j0 as f64 * unit],
                     [(i1 + 1) as f64 * unit, (j1 + 1) as f64 * unit],
                 ));

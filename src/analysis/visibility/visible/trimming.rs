@@ -262,9 +262,7 @@ pub(crate) fn trimming_curves(
                             Some((_, Err(why))) => lost = missing(why.clone()),
                             Some((_, Ok(None))) => {}
                             Some((b, Ok(Some(hit)))) => {
-                                let lo = [b.uv[0][0], b.uv[1][0]];
-                                let hi = [b.uv[0][1], b.uv[1][1]];
-                                let sample = lifts[b.patch].space_box(lo, hi);
+                                let sample = lifts[b.patch].space_box(b.uv.lo, b.uv.hi);
                                 let anchor = sample.map(|sample| Anchor {
                                     patch: hit.patch,
                                     uv: hit.uv,

@@ -5,6 +5,7 @@ use crate::analysis::chords::plane_curve::{derivs, SurfaceBounds};
 use crate::analysis::visibility::scene::Scene;
 use crate::analysis::visibility::sheets::range_on;
 use crate::bernstein::Bernstein;
+use crate::geometry::Rect;
 use crate::number::{Interval, Number, Precision};
 use crate::solver::system::inverse;
 use crate::surface::RationalPatch;
@@ -84,11 +85,12 @@ impl LiftPatch {
     }
 
     /// Krawczyk's test with the image point as a parameter: whether every image point in
-    /// `y` has exactly one preimage in the parameter box `[lo, hi]` (which may reach past the
+    /// `y` has exactly one preimage in the parameter box `b` (which may reach past the
     /// square: the polynomials are defined everywhere). `proofs/visible-regions.md`, claim 4.
-    pub(crate) fn unique_preimages(&self, t: &Tube, lo: [f64; 2], hi: [f64; 2]) -> bool {
+    pub(crate) fn unique_preimages(&self, t: &Tube, b: &Rect) -> bool {
         let y = t.hull;
-        let m = [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])];
+        let (lo, hi) = (b.lo, b.hi);
+        let m = b.center();
         let yc = [0.5 * (y[0].lo() + y[0].hi()), 0.5 * (y[1].lo() + y[1].hi())];
         // C: the inverse of the point Jacobian at the centre (any matrix keeps the test sound).
         let jm: Vec<Vec<f64>> = (0..2)

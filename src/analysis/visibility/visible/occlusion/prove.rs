@@ -3,12 +3,12 @@
 
 use super::lift::IPoly;
 use super::walk::{
-    apart_from_square, clamp, grown, hull, lerp, side_axes, sides_crossed, PBox, Vertex, Walk,
-    Window,
+    apart_from_square, clamp, grown, lerp, side_axes, sides_crossed, Vertex, Walk, Window,
 };
 use super::{Lifting, OcclusionRun};
 use crate::analysis::chords::plane_curve::partials_on;
 use crate::analysis::visibility::sheets::range_on;
+use crate::geometry::Rect;
 use crate::number::margin;
 use crate::number::{Interval, Number};
 use crate::reason::Reason;
@@ -23,7 +23,7 @@ pub(super) type ProvenRun = (Vec<[f64; 2]>, Vec<Option<f64>>);
 pub(crate) struct Anchor {
     /// The patch behind and an enclosure of the point's parameters there.
     pub patch: usize,
-    pub uv: PBox,
+    pub uv: Rect,
     /// An enclosure of the sample point in space.
     pub sample: ([f64; 3], [f64; 3]),
 }
@@ -35,7 +35,7 @@ pub(super) struct Proven {
     /// For a window's box: 0 on the patch before the crossing, 1 after.
     pub(super) window_side: usize,
     pub(super) patch: usize,
-    pub(super) w: PBox,
+    pub(super) w: Rect,
     pub(super) space: ([f64; 3], [f64; 3]),
 }
 
@@ -53,7 +53,7 @@ pub(super) const MAX_SPLITS: u32 = 6;
 impl Lifting<'_> {
     /// A box around `w` holding exactly one preimage of every image point of the tube
     /// around `x` (on patch `p`), or `None`.
-    pub(super) fn vertex_box(&self, p: usize, x: [f64; 3], w: [f64; 2], e: f64) -> Option<PBox> {
+    pub(super) fn vertex_box(&self, p: usize, x: [f64; 3], w: [f64; 2], e: f64) -> Option<Rect> {
         let t = self.tube(&[x], e)?;
         let y = t.hull;
         let lp = &self.patches[p];
@@ -74,9 +74,8 @@ impl Lifting<'_> {
             .fold(0.0, f64::max);
         let r0 = norm * half + 1e-13 * (1.0 + w[0].abs().max(w[1].abs()));
         [2.0, 4.0, 16.0, 64.0].into_iter().find_map(|k| {
-            let b = w.map(|c| [c - k * r0, c + k * r0]);
-            lp.unique_preimages(&t, [b[0][0], b[1][0]], [b[0][1], b[1][1]])
-                .then_some(b)
+            let b = Rect::new(w.map(|c| c - k * r0), w.map(|c| c + k * r0));
+            lp.unique_preimages(&t, &b).then_some(b)
         })
     }
 
@@ -86,18 +85,16 @@ impl Lifting<'_> {
         &self,
         p: usize,
         xs: &[[f64; 3]],
-        ends: &[PBox],
+        ends: &[Rect],
         e: f64,
-    ) -> Option<PBox> {
+    ) -> Option<Rect> {
         let t = self.tube(xs, e)?;
-        let h = ends.iter().skip(1).fold(ends[0], |acc, b| hull(&acc, b));
+        let h = ends.iter().skip(1).fold(ends[0], |acc, b| acc.hull(b));
         // An axis-aligned image box maps to a parallelogram in parameters: a box that holds
         // it may have to reach well past the hull of the ends.
         [0.01, 0.1, 0.5, 1.0].into_iter().find_map(|g| {
             let b = grown(&h, g, 1e-13);
-            self.patches[p]
-                .unique_preimages(&t, [b[0][0], b[1][0]], [b[0][1], b[1][1]])
-                .then_some(b)
+            self.patches[p].unique_preimages(&t, &b).then_some(b)
         })
     }
 
@@ -123,13 +120,13 @@ impl Lifting<'_> {
     pub(super) fn chord_bound(
         &self,
         p: usize,
-        w: &PBox,
+        w: &Rect,
         a: Vertex,
         b: Vertex,
         e: f64,
     ) -> Option<[f64; 2]> {
         let lp = &self.patches[p];
-        let (lo, hi) = ([w[0][0], w[1][0]], [w[0][1], w[1][1]]);
+        let (lo, hi) = (w.lo, w.hi);
         let pi = Interval::point;
         let mag = |x: Interval| x.lo().abs().max(x.hi().abs());
         let y = self.tube(&[a.x, b.x], e)?.hull;
@@ -220,7 +217,7 @@ impl Lifting<'_> {
 
     /// Whether a box of patch `p` reaches past a side that is an edge continuing into one
     /// other patch (other than `allowed`).
-    pub(super) fn crosses_continuing(&self, p: usize, b: &PBox, allowed: Option<Edge>) -> bool {
+    pub(super) fn crosses_continuing(&self, p: usize, b: &Rect, allowed: Option<Edge>) -> bool {
         sides_crossed(b)
             .into_iter()
             .any(|s| Some(s) != allowed && self.scene.twins(p, s).len() == 1)
@@ -233,8 +230,8 @@ impl Lifting<'_> {
     pub(super) fn prove_chord(
         &self,
         p: usize,
-        a: (Vertex, PBox),
-        b: (Vertex, PBox),
+        a: (Vertex, Rect),
+        b: (Vertex, Rect),
         [e, target]: [f64; 2],
         depth: u32,
         out: &mut Vec<Vertex>,
@@ -296,8 +293,8 @@ impl Lifting<'_> {
         proven: &mut Vec<Proven>,
     ) -> Option<[f64; 2]> {
         let (edge_from, edge_to, rev) = win.edges;
-        let boxes = |p: usize, ws: &[[f64; 2]; 3]| -> Option<([PBox; 3], PBox)> {
-            let v: Vec<PBox> = (0..3)
+        let boxes = |p: usize, ws: &[[f64; 2]; 3]| -> Option<([Rect; 3], Rect)> {
+            let v: Vec<Rect> = (0..3)
                 .map(|i| self.vertex_box(p, win.x[i], ws[i], e))
                 .collect::<Option<_>>()?;
             let v = [v[0], v[1], v[2]];
@@ -318,9 +315,9 @@ impl Lifting<'_> {
             return None;
         }
         // Where either box meets the edge, the same points of the edge are in the other box.
-        let edge_in = |b: &PBox, edge: Edge| -> Option<[f64; 2]> {
+        let edge_in = |b: &Rect, edge: Edge| -> Option<[f64; 2]> {
             let (fixed, at, free) = side_axes(edge);
-            (b[fixed][0] <= at && at <= b[fixed][1]).then_some(b[free])
+            (b.lo[fixed] <= at && at <= b.hi[fixed]).then_some(b.axis(free))
         };
         let map = |t: [f64; 2]| {
             if rev {
@@ -338,12 +335,10 @@ impl Lifting<'_> {
             (tf[1].max(map(tt)[1]) * grid).ceil() / grid,
         ];
         let (free_f, free_t) = (side_axes(edge_from).2, side_axes(edge_to).2);
-        wf[free_f] = r;
-        wt[free_t] = map(r);
+        wf.set_axis(free_f, r);
+        wt.set_axis(free_t, map(r));
         let t = self.tube(&win.x, e)?;
-        let unique = |p: usize, b: &PBox| {
-            self.patches[p].unique_preimages(&t, [b[0][0], b[1][0]], [b[0][1], b[1][1]])
-        };
+        let unique = |p: usize, b: &Rect| self.patches[p].unique_preimages(&t, b);
         if !unique(win.from, &wf) || !unique(win.to, &wt) {
             return None;
         }
@@ -358,10 +353,10 @@ impl Lifting<'_> {
         // On each patch, its drawn chord to or from x*, and the true points on the patch
         // over the other half of the window: within the other half's bound of its chord on
         // the extended patch, whose points are within |DS| times its length of x*.
-        let half = |p: usize, b: &PBox, ws: &[[f64; 2]; 3], near: [usize; 2], far: [usize; 2]| {
+        let half = |p: usize, b: &Rect, ws: &[[f64; 2]; 3], near: [usize; 2], far: [usize; 2]| {
             let d_near = self.chord_bound(p, b, vertex(near[0], ws), vertex(near[1], ws), e)?[0];
             let d_far = self.chord_bound(p, b, vertex(far[0], ws), vertex(far[1], ws), e)?[0];
-            let (lo, hi) = ([b[0][0], b[1][0]], [b[0][1], b[1][1]]);
+            let (lo, hi) = (b.lo, b.hi);
             let ([s_u, ..], s_v) = self.patches[p].surface.bounds_both(lo, hi, 0)?;
             let (fa, fb) = (ws[far[0]], ws[far[1]]);
             // (The drawn end is x*'s lift clamped into the square: a shift of at most 1e-12.)
@@ -415,7 +410,7 @@ impl Lifting<'_> {
                 point_distance(points[a], centre).total_cmp(&point_distance(points[b], centre))
             })
             .unwrap_or(0);
-        let h = anchor.uv.map(|r| 0.5 * (r[0] + r[1]));
+        let h = anchor.uv.center();
         let w0 = self
             .lift(anchor.patch, points[k0], h)
             .ok_or(Reason::LiftFromSample)?;
@@ -618,10 +613,9 @@ impl Lifting<'_> {
         if holders.is_empty() {
             return Err(Reason::SampleOutsideDrawing);
         }
-        let anchored = holders.iter().all(|c| {
-            c.patch == anchor.patch
-                && (0..2).all(|k| c.w[k][0] <= anchor.uv[k][0] && anchor.uv[k][1] <= c.w[k][1])
-        });
+        let anchored = holders
+            .iter()
+            .all(|c| c.patch == anchor.patch && c.w.contains(&anchor.uv));
         if !anchored {
             return Err(Reason::NotOnLiftedSheet);
         }
@@ -702,10 +696,9 @@ mod tests {
             let t = lifting.tube(&[xa, xb], e).unwrap();
             // Soundness: a box that misses a lift of the tube (the first end's box, when the
             // second end lifts outside it) must not pass the test.
-            let outside = (0..2).any(|k| wb[k] < va[k][0] || wb[k] > va[k][1]);
+            let outside = (0..2).any(|k| wb[k] < va.lo[k] || wb[k] > va.hi[k]);
             if outside {
-                let accepted =
-                    lifts[p].unique_preimages(&t, [va[0][0], va[1][0]], [va[0][1], va[1][1]]);
+                let accepted = lifts[p].unique_preimages(&t, &va);
                 assert!(
                     !accepted,
                     "patch {p}: {va:?} accepted for the tube to {wb:?}"
@@ -719,11 +712,7 @@ mod tests {
                 let y = [0, 1].map(|k| {
                     mid(t.a[k]) + mu * mid(t.d[k]) + (2.0 * next() - 1.0) * t.r[k] * 0.999
                 });
-                let starts = [
-                    [w[0][0], w[1][0]],
-                    [w[0][1], w[1][1]],
-                    [0.5 * (w[0][0] + w[0][1]), 0.5 * (w[1][0] + w[1][1])],
-                ];
+                let starts = [w.lo, w.hi, w.center()];
                 let roots: Vec<[f64; 2]> = starts
                     .iter()
                     .filter_map(|s| lifts[p].newton(y, *s))
@@ -733,7 +722,7 @@ mod tests {
                     checked += 1;
                     let slack = 1e-12;
                     assert!(
-                        (0..2).all(|k| w[k][0] - slack <= r[k] && r[k] <= w[k][1] + slack),
+                        (0..2).all(|k| w.lo[k] - slack <= r[k] && r[k] <= w.hi[k] + slack),
                         "patch {p}: the lift {r:?} of {y:?} is outside the proven box {w:?}"
                     );
                     let d = (r[0] - roots[0][0]).abs().max((r[1] - roots[0][1]).abs());

@@ -4,6 +4,7 @@
 use super::lift::Tube;
 use super::Lifting;
 use crate::analysis::projection::{side_point_f64, Projection};
+use crate::geometry::Rect;
 use crate::number::{Interval, Number};
 use crate::reason::Reason;
 use crate::surface::Edge;
@@ -91,39 +92,32 @@ pub(super) fn side_axes(e: Edge) -> (usize, f64, usize) {
     }
 }
 
-/// A parameter box, `[lo, hi]` per coordinate.
-pub(super) type PBox = [[f64; 2]; 2];
-
-pub(super) fn apart_from_square(b: &PBox) -> bool {
-    b.iter().any(|r| r[1] < 0.0 || r[0] > 1.0)
-}
-
-pub(super) fn hull(a: &PBox, b: &PBox) -> PBox {
-    [0, 1].map(|k| [a[k][0].min(b[k][0]), a[k][1].max(b[k][1])])
+/// Whether the box lies apart from the unit square (along some axis, wholly beyond it).
+pub(super) fn apart_from_square(b: &Rect) -> bool {
+    (0..2).any(|k| b.hi[k] < 0.0 || b.lo[k] > 1.0)
 }
 
 /// The box grown on every side by `frac` times its larger extent, plus `abs` (the preimage of
 /// an image box around a chord that is diagonal in the image is wide in both parameters even
 /// where the chord's lift runs along one of them).
-pub(super) fn grown(b: &PBox, frac: f64, abs: f64) -> PBox {
-    let extent = (b[0][1] - b[0][0]).max(b[1][1] - b[1][0]);
-    let g = frac * extent + abs;
-    b.map(|r| [r[0] - g, r[1] + g])
+pub(super) fn grown(b: &Rect, frac: f64, abs: f64) -> Rect {
+    let extent = b.width(0).max(b.width(1));
+    b.grown(frac * extent + abs)
 }
 
 /// The sides of the square a box reaches past.
-pub(super) fn sides_crossed(b: &PBox) -> Vec<Edge> {
+pub(super) fn sides_crossed(b: &Rect) -> Vec<Edge> {
     let mut out = Vec::new();
-    if b[1][0] < 0.0 {
+    if b.lo[1] < 0.0 {
         out.push(Edge::V0);
     }
-    if b[0][1] > 1.0 {
+    if b.hi[0] > 1.0 {
         out.push(Edge::U1);
     }
-    if b[1][1] > 1.0 {
+    if b.hi[1] > 1.0 {
         out.push(Edge::V1);
     }
-    if b[0][0] < 0.0 {
+    if b.lo[0] < 0.0 {
         out.push(Edge::U0);
     }
     out
@@ -235,7 +229,7 @@ impl Lifting<'_> {
                 // of its ends are farther from the crossed sides than the vertex boxes reach.
                 let reach = |q: usize, w: [f64; 2]| {
                     self.vertex_box(q, x_star, w, e)
-                        .map_or(0.0, |b| b.iter().map(|r| r[1] - r[0]).fold(0.0, f64::max))
+                        .map_or(0.0, |b| 0.0f64.max(b.width(0)).max(b.width(1)))
                 };
                 let need = 3.0 * reach(p, w_lo).max(reach(p2, w2));
                 let beyond = |w: [f64; 2]| {
