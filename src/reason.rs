@@ -81,6 +81,10 @@ pub enum Reason {
     NearBoxEdge,
     /// The box's arcs are proven, but not within the tolerance, at the depth or box budget.
     ArcsNotWithinTolerance,
+    /// Proven within the tolerance in the model's frame, but the rounding of the drawn points
+    /// carried back to the model's coordinates may take them past it (a model very far from
+    /// the origin for its size and the tolerance).
+    RoundingPastTolerance,
 
     // --- Bitangents ---
     /// The two pieces may meet in space: nearby pairs are not separated from coincident ones.
@@ -354,6 +358,9 @@ impl fmt::Display for Reason {
             NearBoxEdge => f.write_str("the curve passes through or near an edge of the box"),
             ArcsNotWithinTolerance => f.write_str(
                 "its arcs are proven but not within the tolerance when the depth or box budget ran out",
+            ),
+            RoundingPastTolerance => f.write_str(
+                "drawn within the tolerance in the model's frame, but rounding the points back to the model's coordinates may take them past it",
             ),
             CoincidentPieces => f.write_str(
                 "the two pieces may meet in space (a shared side, a pole or an intersection): pairs of nearby points are not separated from the coincident ones",

@@ -20,6 +20,7 @@ use crate::analysis::chords::sphere_curve::{largest, piece_error};
 use crate::analysis::contour::curves::Silhouette;
 use crate::analysis::contour::parabolic::AsymptoticRanges;
 use crate::analysis::flecnodal::curves::{flecnodal_curves, FlecnodalOptions};
+use crate::analysis::frame::Frame;
 use crate::error::Error;
 use crate::geometry::vec3::cross;
 use crate::model::Model;
@@ -246,6 +247,10 @@ pub struct EventOptions {
 /// # Ok::<(), limn::Error>(())
 /// ```
 pub fn events(model: &Model, opts: &EventOptions) -> Result<Events, Error> {
+    // In the model's own frame (`proofs/model-frame.md`); directions do not move with it.
+    let frame = Frame::of(model);
+    let local = frame.model(model);
+    let model: &Model = &local;
     let mut out = Events {
         curves: Vec::new(),
         uncertified: Vec::new(),

@@ -7,6 +7,7 @@ pub mod chords;
 pub mod contour;
 pub mod events;
 pub mod flecnodal;
+pub mod frame;
 pub mod projection;
 pub mod view;
 pub mod visibility;

@@ -12,6 +12,7 @@ mod events;
 mod flecnodal;
 mod flecnodal_curves;
 mod hlr;
+mod invariance;
 mod parabolic;
 mod silhouette;
 mod visible;

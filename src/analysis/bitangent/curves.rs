@@ -19,6 +19,7 @@ use crate::analysis::bitangent::system::{
 use crate::analysis::bitangent::tangent_lines::{tangent_plane_along, TangentLine};
 use crate::analysis::chords::space_curve::Accuracy;
 use crate::analysis::chords::sphere_curve::{largest, piece_error};
+use crate::analysis::frame::Frame;
 use crate::error::Error;
 use crate::geometry::vec3::cross;
 use crate::geometry::Rect;
@@ -230,6 +231,58 @@ impl BitangentCurves {
     /// Every pair certified.
     pub fn is_certified(&self) -> bool {
         self.pairs.iter().all(PairBitangents::is_certified)
+    }
+
+    /// The curves of the model in `frame` carried back to the model's coordinates
+    /// (`proofs/model-frame.md`): points in space moved by the origin (the error bounds grown
+    /// by the rounding that adds; a pair's bound past `tol` then, only for a model some 2⁵⁰
+    /// times the tolerance from the origin, dropped),
+    /// planes `n · x = d` moved to `n · x = d + n · c`; parameters, lines and normals are
+    /// unchanged by a translation.
+    pub(crate) fn in_model_frame(mut self, frame: &Frame, tol: Option<f64>) -> BitangentCurves {
+        if frame.is_identity() {
+            return self;
+        }
+        for pair in &mut self.pairs {
+            let mut added = 0.0f64;
+            for b in &mut pair.branches {
+                for q in &mut b.points {
+                    q.p = frame.point(q.p);
+                    q.q = frame.point(q.q);
+                    added = added
+                        .max(frame.point_error(&q.p))
+                        .max(frame.point_error(&q.q));
+                }
+            }
+            pair.error_bound = frame.bound(pair.error_bound, added);
+            if let (Some(b), Some(t)) = (pair.error_bound, tol) {
+                if b > t {
+                    pair.error_bound = None;
+                }
+            }
+            for u in &mut pair.unresolved {
+                u.at = u.at.map(|x| frame.point(x));
+            }
+            for s in &mut pair.singular_points {
+                s.at = s.at.map(|x| frame.point(x));
+            }
+            for s in &mut pair.plane_sets {
+                let d = frame.plane_offset(s.normal, s.offset);
+                // Oriented so that the offset is nonnegative, as documented.
+                (s.normal, s.offset) = if d < 0.0 {
+                    (s.normal.map(|x| -x), -d)
+                } else {
+                    (s.normal, d)
+                };
+            }
+            for l in pair.tangent_lines.iter_mut().flatten() {
+                let shift: Rational = (0..3)
+                    .map(|k| Rational::from(&l.normal[k] * &frame.origin()[k]))
+                    .sum();
+                l.offset += shift;
+            }
+        }
+        self
     }
 }
 
@@ -699,6 +752,14 @@ fn branches(
 /// # Ok::<(), limn::Error>(())
 /// ```
 pub fn bitangent_curves(model: &Model, opts: &BitangentOptions) -> Result<BitangentCurves, Error> {
+    // In the model's own frame (`proofs/model-frame.md`).
+    let frame = Frame::of(model);
+    let r = pairs(&frame.model(model), opts)?;
+    Ok(r.in_model_frame(&frame, opts.tolerance))
+}
+
+/// [`bitangent_curves`] of the model as it is given.
+fn pairs(model: &Model, opts: &BitangentOptions) -> Result<BitangentCurves, Error> {
     let patches: Vec<&RationalPatch> = model.patches.iter().map(|p| &p.surface).collect();
     let cones: Vec<Option<([f64; 3], f64)>> = patches.par_iter().map(|p| normal_cone(p)).collect();
     let mut todo = Vec::new();

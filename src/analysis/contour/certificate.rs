@@ -67,6 +67,12 @@ pub struct SilhouetteCertificate {
     pub patch_count: usize,
     /// The view.
     pub view: ViewClaim,
+    /// The origin of the frame the polynomials are stated in, exact (`"p/q"`): they are the
+    /// silhouette functions of the model translated by minus this point, for the view
+    /// translated with it (an eye moves, a direction does not; `proofs/model-frame.md`).
+    /// Absent means the origin, as in certificates written before frames.
+    #[serde(default = "zero_origin", skip_serializing_if = "is_zero_origin")]
+    pub origin: [String; 3],
     /// Every patch's square was decided.
     pub certified: bool,
     /// One entry per patch, in order.
@@ -136,10 +142,19 @@ impl SilhouetteCertificate {
                 kind: kind.into(),
                 vector: v.clone().map(|x| x.to_string()),
             },
+            origin: s.frame.origin().clone().map(|x| x.to_string()),
             certified: patches.iter().all(|p| p.curve.certified),
             patches,
         }
     }
+}
+
+fn zero_origin() -> [String; 3] {
+    ["0".into(), "0".into(), "0".into()]
+}
+
+fn is_zero_origin(o: &[String; 3]) -> bool {
+    o.iter().all(|x| x == "0")
 }
 
 /// The verdict on a valid certificate.
@@ -263,6 +278,7 @@ fn to_integers(q: &[Q]) -> Vec<Z> {
 fn check_function(
     model: &Model,
     index: usize,
+    origin: &[Q],
     view: &[Q; 3],
     eye: bool,
     pc: &PatchCertificate,
@@ -284,7 +300,14 @@ fn check_function(
     // [wx, wy, wz, w] as one list, scaled together (S = P / W is unchanged).
     let mut hom: Vec<Q> = Vec::with_capacity(4 * w.len());
     for k in 0..3 {
-        hom.extend(patch.points().iter().zip(&w).map(|(p, wi)| big(&p[k]) * wi));
+        // The point in the certificate's frame: translated by minus its origin.
+        hom.extend(
+            patch
+                .points()
+                .iter()
+                .zip(&w)
+                .map(|(p, wi)| (big(&p[k]) - &origin[k]) * wi),
+        );
     }
     hom.extend(w.iter().cloned());
     let hom = to_integers(&hom);
@@ -453,9 +476,18 @@ pub fn check_silhouette(
         .map(|k| parse_rational(&cert.view.vector[k], "view"))
         .into_iter()
         .collect::<Result<Vec<Q>, _>>()?;
-    let view: [Q; 3] = [view[0].clone(), view[1].clone(), view[2].clone()];
+    let mut view: [Q; 3] = [view[0].clone(), view[1].clone(), view[2].clone()];
     if !eye && view.iter().all(Zero::is_zero) {
         return Err(top("the view direction is zero".into()));
+    }
+    let origin = [0, 1, 2]
+        .map(|k| parse_rational(&cert.origin[k], "origin"))
+        .into_iter()
+        .collect::<Result<Vec<Q>, _>>()?;
+    if eye {
+        for k in 0..3 {
+            view[k] = &view[k] - &origin[k];
+        }
     }
     let results: Vec<Result<_, CheckFailure>> = cert
         .patches
@@ -465,7 +497,7 @@ pub fn check_silhouette(
             if pc.patch != i {
                 return Err(top(format!("entry {i} is for patch {}", pc.patch)));
             }
-            check_function(model, i, &view, eye, pc)?;
+            check_function(model, i, &origin, &view, eye, pc)?;
             check_curve(&pc.curve).map_err(|e| CheckFailure {
                 item: format!("patch {i}: {}", e.item),
                 reason: e.reason,

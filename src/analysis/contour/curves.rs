@@ -2,6 +2,7 @@
 //! a model with their patches, certified flags and error bounds, singular points, degenerate
 //! cases and what is unresolved.
 
+use crate::analysis::frame::Frame;
 use crate::bernstein::Bernstein;
 use crate::geometry::Rect;
 use crate::number::Rational;
@@ -118,8 +119,37 @@ pub struct Silhouette {
     pub tolerance: Option<f64>,
     /// Sign questions by the level that settled them.
     pub escalations: Escalations,
+    /// The frame the curves were solved in ([`crate::analysis::frame`]): `solved` holds the
+    /// polynomials of the model translated by its origin (what a certificate states); the
+    /// points in space are the model's.
+    #[serde(skip)]
+    pub frame: Frame,
 }
 impl Silhouette {
+    /// The result of a run on the model in `frame` carried back to the model's coordinates
+    /// (`proofs/model-frame.md`): points in space moved by the origin, their error bounds
+    /// grown by the rounding that adds, and a curve whose bound then exceeds `tol` (only for a
+    /// model some 2⁵⁰ times the tolerance from the origin) no longer certified (its bound is
+    /// kept: it is proven).
+    pub(crate) fn in_model_frame(mut self, frame: &Frame, tol: Option<f64>) -> Silhouette {
+        self.frame = frame.clone();
+        if frame.is_identity() {
+            return self;
+        }
+        for c in &mut self.curves {
+            let added = frame.points(&mut c.points);
+            c.error_bound = frame.bound(c.error_bound, added);
+            if let (Some(b), Some(t)) = (c.error_bound, tol) {
+                c.certified &= b <= t;
+            }
+        }
+        for p in &mut self.singular_points {
+            p.point = frame.point(p.point);
+        }
+        self.tolerance = tol.filter(|_| self.tolerance.is_some());
+        self
+    }
+
     /// Whether the topology of every curve is proven: no unresolved region, every join
     /// proven, every open curve ending on the model's open boundary.
     pub fn topology_certified(&self) -> bool {
@@ -150,6 +180,7 @@ impl Silhouette {
             boxes: 0,
             tolerance: None,
             escalations: Escalations::default(),
+            frame: Frame::identity(),
         }
     }
 }

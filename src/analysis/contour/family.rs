@@ -367,6 +367,7 @@ pub fn model_curves(
         boxes,
         tolerance: tol,
         escalations,
+        frame: crate::analysis::frame::Frame::identity(),
     }
 }
 

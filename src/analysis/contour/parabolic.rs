@@ -13,6 +13,7 @@ use crate::analysis::chords::plane_curve::{mean_value_range, range_enclosing};
 use crate::analysis::chords::space_curve::TangentRanges;
 use crate::analysis::contour::curves::Silhouette;
 use crate::analysis::contour::family::{model_curves, ContourOptions, CurveRules};
+use crate::analysis::frame::Frame;
 use crate::bernstein::Bernstein;
 use crate::error::Error;
 use crate::model::{Model, WeldTolerance};
@@ -188,12 +189,11 @@ impl AsymptoticRanges {
 /// # Ok::<(), limn::Error>(())
 /// ```
 pub fn parabolic(model: &Model, opts: &ContourOptions) -> Result<Silhouette, Error> {
-    Ok(parabolic_curves(
-        model,
-        &opts.curve,
-        opts.weld_for(model),
-        opts.tol,
-    ))
+    // In the model's own frame (`proofs/model-frame.md`).
+    let frame = Frame::of(model);
+    let local = frame.model(model);
+    let s = parabolic_curves(&local, &opts.curve, opts.weld_for(&local), opts.tol);
+    Ok(s.in_model_frame(&frame, opts.tol))
 }
 
 /// [`parabolic`] with its parts given separately (the analyses built on it).

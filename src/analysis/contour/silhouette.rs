@@ -8,6 +8,7 @@
 //! curve machinery ([`model_curves`], `proofs/silhouette-join.md`).
 
 use crate::analysis::contour::family::ContourOptions;
+use crate::analysis::frame::Frame;
 use crate::analysis::projection::ProjectionError;
 use crate::analysis::view::View;
 use crate::bernstein::Bernstein;
@@ -85,13 +86,17 @@ pub fn silhouette(model: &Model, view: &View, opts: &ContourOptions) -> Result<S
     if view.is_degenerate() {
         return Err(ProjectionError::ZeroDirection.into());
     }
-    Ok(silhouette_curves(
-        model,
-        view,
+    // In the model's own frame (`proofs/model-frame.md`).
+    let frame = Frame::of(model);
+    let local = frame.model(model);
+    let s = silhouette_curves(
+        &local,
+        &frame.view(view),
         &opts.curve,
-        opts.weld_for(model),
+        opts.weld_for(&local),
         opts.tol,
-    ))
+    );
+    Ok(s.in_model_frame(&frame, opts.tol))
 }
 
 /// [`silhouette`] for a view known to be valid, with its parts given separately (the

@@ -10,6 +10,7 @@
 //! reported as degenerate, not solved.
 
 use crate::analysis::chords::space_curve::{Accuracy, TangentRanges, SIDES};
+use crate::analysis::frame::Frame;
 
 use crate::analysis::chords::sphere_curve::{largest, piece_error};
 use crate::analysis::contour::parabolic::parabolic_function;
@@ -186,6 +187,29 @@ impl FlecnodalCurves {
     /// Every patch certified.
     pub fn is_certified(&self) -> bool {
         self.patches.iter().all(PatchFlecnodal::is_certified)
+    }
+
+    /// The curves of the model in `frame` carried back to the model's coordinates
+    /// (`proofs/model-frame.md`): points in space moved by the origin; parameters and the
+    /// asymptotic lines' directions are unchanged by a translation.
+    pub(crate) fn in_model_frame(mut self, frame: &Frame) -> FlecnodalCurves {
+        if frame.is_identity() {
+            return self;
+        }
+        for p in &mut self.patches {
+            for b in &mut p.branches {
+                for q in &mut b.points {
+                    q.xyz = frame.point(q.xyz);
+                }
+            }
+            for u in &mut p.unresolved {
+                u.at = frame.point(u.at);
+            }
+            for s in &mut p.singular_points {
+                s.xyz = frame.point(s.xyz);
+            }
+        }
+        self
     }
 }
 
@@ -528,12 +552,19 @@ fn join_charts<'a>(cu: &'a SpaceCurve, cv: &'a SpaceCurve) -> Joined<'a> {
 /// # Ok::<(), limn::Error>(())
 /// ```
 pub fn flecnodal_curves(model: &Model, opts: &FlecnodalOptions) -> Result<FlecnodalCurves, Error> {
-    Ok(FlecnodalCurves {
+    // In the model's own frame (`proofs/model-frame.md`).
+    let frame = Frame::of(model);
+    Ok(curves(&frame.model(model), opts).in_model_frame(&frame))
+}
+
+/// [`flecnodal_curves`] of the model as it is given.
+fn curves(model: &Model, opts: &FlecnodalOptions) -> FlecnodalCurves {
+    FlecnodalCurves {
         patches: model
             .patches
             .par_iter()
             .enumerate()
             .map(|(i, p)| patch_flecnodal(&p.surface, i, opts))
             .collect(),
-    })
+    }
 }

@@ -47,6 +47,7 @@ use roles::line_roles;
 
 use crate::analysis::contour::drawing::refined_for;
 use crate::analysis::contour::silhouette::silhouette_curves;
+use crate::analysis::frame::Frame;
 use crate::analysis::view::View;
 use crate::analysis::visibility::facing::{facing, Facing};
 use crate::analysis::visibility::ray::RayOptions;
@@ -138,6 +139,14 @@ impl Default for HlrOptions {
 /// # Ok::<(), limn::Error>(())
 /// ```
 pub fn hidden_lines(model: &Model, view: &View, opts: &HlrOptions) -> Result<HiddenLines, Error> {
+    // In the model's own frame (`proofs/model-frame.md`).
+    let frame = Frame::of(model);
+    let h = drawing(&frame.model(model), &frame.view(view), opts)?;
+    Ok(h.in_model_frame(&frame, opts.tol))
+}
+
+/// [`hidden_lines`] of the model as it is given.
+fn drawing(model: &Model, view: &View, opts: &HlrOptions) -> Result<HiddenLines, Error> {
     let weld = opts
         .weld
         .unwrap_or_else(|| crate::model::default_weld(model));

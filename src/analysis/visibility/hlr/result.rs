@@ -1,6 +1,7 @@
 //! The hidden-line drawing as limn returns it: pieces with their proven QI (or why not),
 //! what lies right behind the visible outline, the facing of each patch, the work counted.
 
+use crate::analysis::frame::Frame;
 use crate::analysis::visibility::facing::Facing;
 use crate::analysis::visibility::ray::Hit;
 use crate::geometry::Rect;
@@ -118,6 +119,29 @@ pub struct HiddenLines {
 /// The assumption of every drawing of a model with adjacent patches.
 pub const ADJACENT_ASSUMPTION: &str = "no patch intersects itself, and patches that share a corner or an edge do not cross each other away from their common points (penetrations are searched between patches that share no corner only)";
 impl HiddenLines {
+    /// The drawing of the model in `frame` carried back to the model's coordinates
+    /// (`proofs/model-frame.md`): the points moved by the origin, error bounds grown by the
+    /// rounding that adds, a piece whose bound then exceeds `tol` (only for a model some 2⁵⁰
+    /// times the tolerance from the origin) no longer certified, with its reason.
+    pub(crate) fn in_model_frame(mut self, frame: &Frame, tol: Option<f64>) -> HiddenLines {
+        if frame.is_identity() {
+            return self;
+        }
+        for p in &mut self.pieces {
+            let added = frame.points(&mut p.points);
+            p.error_bound = frame.bound(p.error_bound, added);
+            if let (Some(b), Some(t)) = (p.error_bound, tol) {
+                if b > t {
+                    p.error_bound = None;
+                    p.certified = false;
+                    p.reason.get_or_insert(Reason::RoundingPastTolerance);
+                }
+            }
+        }
+        self.tolerance = tol.filter(|_| self.tolerance.is_some());
+        self
+    }
+
     /// Whether every piece's visibility is proven and every silhouette region resolved.
     pub fn is_certified(&self) -> bool {
         self.stats.silhouette_unresolved == 0 && self.pieces.iter().all(|p| p.certified)

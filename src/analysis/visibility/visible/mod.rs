@@ -41,6 +41,7 @@ mod trimming;
 pub use trimming::{chain_loops, MissingOcclusion, TrimCurve, TrimKind, TrimLoop};
 
 use crate::analysis::contour::silhouette::silhouette_function;
+use crate::analysis::frame::Frame;
 use crate::analysis::view::View;
 use crate::analysis::visibility::facing::{facing, Facing};
 use crate::analysis::visibility::hlr::{hidden_lines, HlrOptions, ADJACENT_ASSUMPTION};
@@ -240,6 +241,38 @@ impl VisibleRegions {
     pub fn is_certified(&self) -> bool {
         self.patches.iter().all(|p| p.certified)
     }
+
+    /// The regions of the model in `frame` carried back to the model's coordinates
+    /// (`proofs/model-frame.md`): points in space moved by the origin, the trimming curves'
+    /// error bounds grown by the rounding that adds (a curve past `tol` then, only for a
+    /// model some 2⁵⁰ times the tolerance from the origin, no longer certified, with its
+    /// reason); parameters, cells and areas are unchanged by a translation.
+    pub(crate) fn in_model_frame(mut self, frame: &Frame, tol: Option<f64>) -> VisibleRegions {
+        if frame.is_identity() {
+            return self;
+        }
+        for p in &mut self.patches {
+            for l in p
+                .visible_loops
+                .iter_mut()
+                .chain(&mut p.possibly_visible_loops)
+            {
+                frame.points(&mut l.xyz);
+            }
+            for c in &mut p.trimming {
+                let added = frame.points(&mut c.xyz);
+                c.error_bound = frame.bound(c.error_bound, added);
+                if let (Some(b), Some(t)) = (c.error_bound, tol) {
+                    if b > t {
+                        c.error_bound = None;
+                        c.certified = false;
+                        c.reason.get_or_insert(Reason::RoundingPastTolerance);
+                    }
+                }
+            }
+        }
+        self
+    }
 }
 
 /// The visible regions of a model's patches in a view.
@@ -269,6 +302,14 @@ pub fn visible_regions(
     view: &View,
     opts: &VisibleOptions,
 ) -> Result<VisibleRegions, Error> {
+    // In the model's own frame (`proofs/model-frame.md`).
+    let frame = Frame::of(model);
+    let r = regions(&frame.model(model), &frame.view(view), opts)?;
+    Ok(r.in_model_frame(&frame, opts.tol))
+}
+
+/// [`visible_regions`] of the model as it is given.
+fn regions(model: &Model, view: &View, opts: &VisibleOptions) -> Result<VisibleRegions, Error> {
     let weld = opts
         .weld
         .unwrap_or_else(|| crate::model::default_weld(model));
