@@ -237,7 +237,7 @@ fn a_time_limit_leaves_the_rest_unresolved() {
 }
 
 /// Every patch fixture from two directions under a time limit: no panic, a well-formed report,
-/// every unresolved cell explained, fractions ordered.
+/// every unresolved cell explained, every uncertified patch naming why, fractions ordered.
 #[test]
 fn fixtures_under_a_time_limit() {
     for model in [
@@ -270,6 +270,18 @@ fn fixtures_under_a_time_limit() {
                 for u in p["unresolved"].as_array().unwrap() {
                     assert!(!u["reason"].as_str().unwrap().is_empty());
                 }
+                // An uncertified patch names what is unresolved and why (issue 26 §4).
+                let named = !p["unresolved"].as_array().unwrap().is_empty()
+                    || p["trimming"]
+                        .as_array()
+                        .unwrap()
+                        .iter()
+                        .any(|c| c["reason"].is_string());
+                assert!(
+                    p["certified"] == true || named,
+                    "{model} {dir}: patch {} is not certified and names no reason",
+                    p["patch"]
+                );
             }
             println!(
                 "{model} from {dir}: area share [{lo:.4}, {hi:.4}], {} cells, {:.0} ms",
