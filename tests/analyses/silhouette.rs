@@ -726,3 +726,24 @@ fn the_length_of_the_direction_does_not_matter() {
         }
     }
 }
+
+/// An eye at 10³⁰⁸ (and at −10³⁰⁰): the silhouette function's scale is brought into f64's
+/// range (`proofs/silhouette-join.md`, "Scale"), so the sphere's one loop is certified quickly,
+/// as from an eye at 10³ (it took more than 20 s before).
+#[test]
+fn an_eye_very_far_away_is_quick_and_certified() {
+    let m = model(shapes::sphere(&q(2, 1)));
+    let big = |e: &str| limn::number::parse_exact(e).unwrap();
+    for e in ["1e308", "-1e300", "1000"] {
+        let v = View::Eye([big(e), big(e), big(e)]);
+        let start = std::time::Instant::now();
+        let s = solve(&m, &v);
+        assert!(s.topology_certified(), "{e}");
+        assert_eq!((s.curves.len(), s.curves[0].closed), (1, true), "{e}");
+        assert!(
+            start.elapsed().as_secs_f64() < 10.0,
+            "{e}: {:?}",
+            start.elapsed()
+        );
+    }
+}

@@ -37,6 +37,39 @@ use crate::analysis::contour::curves::Silhouette;
 /// assert_eq!(g.nvars(), 2);
 /// ```
 pub fn silhouette_function(patch: &RationalPatch, view: &View) -> Bernstein<Rational> {
+    in_f64_range(function(patch, view))
+}
+
+/// `g` times a power of two that brings its largest coefficient into `[1, 2)`, if it lies
+/// outside `[2⁻²⁵⁶, 2²⁵⁶]` (an eye at 10³⁰⁸, a model of size 10²⁰⁰): f64 enclosures of the
+/// coefficients would overflow or lose every digit, and every box would fall through to
+/// exact arithmetic. A positive constant changes no sign and no zero
+/// (`proofs/silhouette-join.md`, "Scale"); others are returned as they are.
+fn in_f64_range(mut g: Bernstein<Rational>) -> Bernstein<Rational> {
+    let Some(m) = g.coeffs().iter().map(|c| c.clone().abs()).max() else {
+        return g;
+    };
+    if m.cmp0() == std::cmp::Ordering::Equal {
+        return g;
+    }
+    let bits = |i: &rug::Integer| i64::from(i.significant_bits());
+    // ⌊log₂ m⌋ within one of this.
+    let k = bits(m.numer()) - bits(m.denom());
+    if (-256..=256).contains(&k) {
+        return g;
+    }
+    for c in g.coeffs_mut() {
+        if k > 0 {
+            *c >>= k as u32;
+        } else {
+            *c <<= (-k) as u32;
+        }
+    }
+    g
+}
+
+/// [`silhouette_function`] before its scale is brought into range.
+fn function(patch: &RationalPatch, view: &View) -> Bernstein<Rational> {
     let n = patch.normal();
     match view {
         View::Direction(d) => {
