@@ -50,6 +50,13 @@ pub(super) fn crossings(
     // crossings with the other lines are not searched, so every segment whose image can meet
     // theirs is unresolved along its whole length.
     for (p, cell, _) in &sil.unresolved {
+        if opts.curve.past_deadline() {
+            // Past the deadline the rest is not searched: every segment is left unresolved.
+            for (k, sg) in segments.iter().enumerate() {
+                events[k].push(Event::unresolved(sg.range, Reason::TimeLimit));
+            }
+            break;
+        }
         let b = vec![(cell.lo[0], cell.hi[0]), (cell.lo[1], cell.hi[1])];
         let bounds = bounds_on(&scene.images[*p], &b);
         for (k, sg) in segments.iter().enumerate() {
@@ -61,6 +68,15 @@ pub(super) fn crossings(
     }
     let mut jobs: Vec<Job> = Vec::new();
     for (a, sa) in segments.iter().enumerate() {
+        // Past the deadline, the pairs (a', b) with a ≤ a' < b and the penetrations and
+        // self-crossings of the segments from a on are not searched: those segments are
+        // unresolved (every pair not searched has both members among them).
+        if opts.curve.past_deadline() {
+            for (k, sg) in segments.iter().enumerate().skip(a) {
+                events[k].push(Event::unresolved(sg.range, Reason::TimeLimit));
+            }
+            break;
+        }
         // Every vertex inside a segment cuts it (a junction on a side).
         for v in &sa.vertices {
             events[a].push(Event::cut(v.param));
