@@ -100,12 +100,31 @@ pub struct Policy<'a> {
     pub ladder: &'a Ladder,
     /// Where the questions are counted.
     pub counts: &'a mut Escalations,
+    /// A wall-clock deadline for the computation's steps that are not sign questions (set
+    /// with [`Policy::with_deadline`]; `None`: no limit).
+    pub deadline: Option<std::time::Instant>,
 }
 
 impl<'a> Policy<'a> {
     /// The policy of this ladder, counting into `counts`.
     pub fn new(ladder: &'a Ladder, counts: &'a mut Escalations) -> Policy<'a> {
-        Policy { ladder, counts }
+        Policy {
+            ladder,
+            counts,
+            deadline: None,
+        }
+    }
+
+    /// The same policy with a wall-clock deadline.
+    pub fn with_deadline(mut self, deadline: Option<std::time::Instant>) -> Policy<'a> {
+        self.deadline = deadline;
+        self
+    }
+
+    /// Whether the deadline has passed.
+    pub fn past_deadline(&self) -> bool {
+        self.deadline
+            .is_some_and(|d| std::time::Instant::now() >= d)
     }
 
     /// [`Ladder::decide`] on this policy's ladder, counted in its tally.

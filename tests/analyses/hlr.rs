@@ -431,3 +431,29 @@ fn a_large_grid_respects_the_time_limit() {
     assert!(took.as_secs_f64() < 120.0, "{took:?}");
     println!("2,500 patches under a 50 ms limit: {took:?}");
 }
+
+/// One patch whose weights span 10⁻³⁰⁰ to 10³⁰⁰ under a time limit of 0.5 s (issue 26 §2): the
+/// cutting of silhouette arcs into monotone pieces stops at the deadline (it ran 13 s with
+/// `--time-limit 1` before, 1.8 s after, in release), and what is left is unresolved by the
+/// time limit.
+#[test]
+fn extreme_weights_respect_the_time_limit() {
+    let w = |s: &str| limn::number::parse_exact(s).unwrap();
+    let weights = [
+        "1e-300", "1", "1e300", "1", "1e150", "1", "1e300", "1", "1e-300",
+    ]
+    .map(w);
+    let points = (0..3)
+        .flat_map(|i| (0..3).map(move |j| [q(i), q(j), q((i * j) % 3)]))
+        .collect();
+    let patch = RationalPatch::new([2, 2], points, weights.to_vec()).unwrap();
+    let m = Model::from_patches(Format::Json, vec![patch]);
+    let mut opts = HlrOptions::default().with_weld(WeldTolerance::Exact);
+    let start = std::time::Instant::now();
+    opts.curve.deadline = Some(start + std::time::Duration::from_millis(500));
+    let h = hidden_lines(&m, &View::Direction([q(1), q(2), q(3)]), &opts).unwrap();
+    let took = start.elapsed();
+    assert!(h.pieces.iter().all(|p| p.certified || p.reason.is_some()));
+    assert!(took.as_secs_f64() < 60.0, "{took:?}");
+    println!("weights 1e-300..1e300 under a 0.5 s limit: {took:?}");
+}

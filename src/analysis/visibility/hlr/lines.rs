@@ -462,7 +462,9 @@ pub(super) fn split_monotone(
     next_id: &mut usize,
     policy: &mut Policy,
 ) -> Vec<Segment> {
-    if s.monotone.is_some() || depth == 0 {
+    // Past the deadline a piece stays as it is (not proven monotone, so unresolved; the
+    // crossings stage then names the time limit).
+    if s.monotone.is_some() || depth == 0 || policy.past_deadline() {
         return vec![s];
     }
     let (lo, hi) = s.domain[s.axis];

@@ -163,7 +163,8 @@ fn drawing(model: &Model, view: &View, opts: &HlrOptions) -> Result<HiddenLines,
     let segments = candidate_lines(
         &scene,
         &sil,
-        &mut Policy::new(&opts.curve.ladder, &mut stats.escalations),
+        &mut Policy::new(&opts.curve.ladder, &mut stats.escalations)
+            .with_deadline(opts.curve.deadline),
     );
     stats.segments = segments.len();
     // 2. Which stretches of them are outline.
