@@ -445,10 +445,6 @@ pub fn pair_bitangents(
     options: &BitangentOptions,
 ) -> PairBitangents {
     let same = i == j;
-    let sides = [first, second].map(|patch| Side {
-        eval: Evaluator::new(patch),
-        jets: DiagonalTest::new(patch),
-    });
     let mut out = PairBitangents {
         patches: [i, j],
         branches: Vec::new(),
@@ -462,6 +458,28 @@ pub fn pair_bitangents(
         error_bound: None,
         within_tolerance: options.tolerance.is_none(),
     };
+    // Past the deadline before any set-up (the jets and evaluators of both patches are exact
+    // products, the costliest step of a small pair): the whole pair is unresolved, at the
+    // patches' centres (evaluated exactly).
+    if options
+        .solver
+        .deadline
+        .is_some_and(|d| std::time::Instant::now() >= d)
+    {
+        let half = Rational::from((1, 2));
+        let at = [first, second].map(|p| p.eval(&half, &half).map(|c| c.to_f64()));
+        out.unresolved.push(BitangentUnresolved {
+            patches: [i, j],
+            at,
+            cell: vec![[0.0, 1.0]; 4],
+            reason: Reason::TimeLimit,
+        });
+        return out;
+    }
+    let sides = [first, second].map(|patch| Side {
+        eval: Evaluator::new(patch),
+        jets: DiagonalTest::new(patch),
+    });
     let centre = |cell: &[[f64; 2]]| -> [[f64; 3]; 2] {
         std::array::from_fn(|k| {
             let (lo, hi) = params(same, cell, 2 * k);
@@ -470,20 +488,6 @@ pub fn pair_bitangents(
                 .eval(0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]))[0]
         })
     };
-    if options
-        .solver
-        .deadline
-        .is_some_and(|d| std::time::Instant::now() >= d)
-    {
-        let cell = vec![[0.0, 1.0]; 4];
-        out.unresolved.push(BitangentUnresolved {
-            patches: [i, j],
-            at: centre(&cell),
-            cell,
-            reason: Reason::TimeLimit,
-        });
-        return out;
-    }
     let (eqs, divided) = bitangent_system(first, second);
     out.divided_sides = divided;
     let lambdas: Vec<Rational> = (0..4)
@@ -779,7 +783,14 @@ fn pairs(model: &Model, opts: &BitangentOptions) -> Result<BitangentCurves, Erro
     }
     let excluded: Vec<bool> = patches
         .par_iter()
-        .map(|p| DiagonalTest::new(p).excludes([0.0, 0.0], [1.0, 1.0]))
+        .map(|p| {
+            // Past the deadline the pair is kept, and left unresolved by its own check.
+            let late = opts
+                .solver
+                .deadline
+                .is_some_and(|d| std::time::Instant::now() >= d);
+            !late && DiagonalTest::new(p).excludes([0.0, 0.0], [1.0, 1.0])
+        })
         .collect();
     todo.retain(|&(i, j)| i != j || !excluded[i]);
     let mut pairs: Vec<PairBitangents> = todo
