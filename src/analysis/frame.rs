@@ -166,6 +166,23 @@ impl Frame {
         worst
     }
 
+    /// Carries a drawn polyline back in place and grows its error bound by the rounding that
+    /// adds; whether the bound is then still within `tol` (true without a bound or a
+    /// tolerance).
+    pub fn drawing(
+        &self,
+        points: &mut [[f64; 3]],
+        bound: &mut Option<f64>,
+        tol: Option<f64>,
+    ) -> bool {
+        let added = self.points(points);
+        *bound = self.bound(*bound, added);
+        match (*bound, tol) {
+            (Some(b), Some(t)) => b <= t,
+            _ => true,
+        }
+    }
+
     /// An error bound of drawn points after carrying them back: `bound + added`, rounded up
     /// (`None` stays `None`).
     pub fn bound(&self, bound: Option<f64>, added: f64) -> Option<f64> {

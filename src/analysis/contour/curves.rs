@@ -137,11 +137,7 @@ impl Silhouette {
             return self;
         }
         for c in &mut self.curves {
-            let added = frame.points(&mut c.points);
-            c.error_bound = frame.bound(c.error_bound, added);
-            if let (Some(b), Some(t)) = (c.error_bound, tol) {
-                c.certified &= b <= t;
-            }
+            c.certified &= frame.drawing(&mut c.points, &mut c.error_bound, tol);
         }
         for p in &mut self.singular_points {
             p.point = frame.point(p.point);

@@ -128,14 +128,10 @@ impl HiddenLines {
             return self;
         }
         for p in &mut self.pieces {
-            let added = frame.points(&mut p.points);
-            p.error_bound = frame.bound(p.error_bound, added);
-            if let (Some(b), Some(t)) = (p.error_bound, tol) {
-                if b > t {
-                    p.error_bound = None;
-                    p.certified = false;
-                    p.reason.get_or_insert(Reason::RoundingPastTolerance);
-                }
+            if !frame.drawing(&mut p.points, &mut p.error_bound, tol) {
+                p.error_bound = None;
+                p.certified = false;
+                p.reason.get_or_insert(Reason::RoundingPastTolerance);
             }
         }
         self.tolerance = tol.filter(|_| self.tolerance.is_some());

@@ -260,14 +260,10 @@ impl VisibleRegions {
                 frame.points(&mut l.xyz);
             }
             for c in &mut p.trimming {
-                let added = frame.points(&mut c.xyz);
-                c.error_bound = frame.bound(c.error_bound, added);
-                if let (Some(b), Some(t)) = (c.error_bound, tol) {
-                    if b > t {
-                        c.error_bound = None;
-                        c.certified = false;
-                        c.reason.get_or_insert(Reason::RoundingPastTolerance);
-                    }
+                if !frame.drawing(&mut c.xyz, &mut c.error_bound, tol) {
+                    c.error_bound = None;
+                    c.certified = false;
+                    c.reason.get_or_insert(Reason::RoundingPastTolerance);
                 }
             }
         }
