@@ -147,9 +147,20 @@ pub(super) fn read(name: &str, text: &str) -> Result<Model, ReadError> {
         let full = e.to_string();
         let suffix = format!(" at line {} column {}", e.line(), e.column());
         let what = full.strip_suffix(&suffix).unwrap_or(&full);
+        // serde_json gives column 0 for an error found just after a line break (at the end
+        // of the file, or a token cut by the break): that is the break ending the previous
+        // line, the column after its last character.
+        let (line, column) = match (e.line(), e.column()) {
+            (l, 0) if l > 1 => {
+                let before = text.split('\n').nth(l - 2).unwrap_or("");
+                let before = before.strip_suffix('\r').unwrap_or(before);
+                (l - 1, before.chars().count() + 1)
+            }
+            (l, c) => (l.max(1), c.max(1)),
+        };
         ReadError::new(
             name,
-            Place::LineColumn(e.line(), e.column()),
+            Place::LineColumn(line, column),
             format!("invalid JSON: {what}"),
         )
     })?;

@@ -4,10 +4,13 @@
 //!   weights, spheres, tori, cylinders, planes), and exact rational rotations.
 //! - [`strategies`]: proptest strategies for random and degenerate patches and polynomials.
 //! - [`ArbitraryPatch`]: a quickcheck `Arbitrary` wrapper over the same generators.
+//! - [`fuzz`]: a mutational fuzzer of the model readers and of the `limn` command line, on the
+//!   stable toolchain (`examples/fuzz.rs`, `docs/testing.md`).
 //!
 //! Enabled by the `testing` feature (on by default).
 
 mod arbitrary;
+pub mod fuzz;
 pub mod shapes;
 pub mod strategies;
 

@@ -13,3 +13,4 @@ mod cli_fixtures;
 mod cli_hlr;
 mod cli_silhouette;
 mod cli_visible;
+mod fuzz_args;

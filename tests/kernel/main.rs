@@ -4,6 +4,7 @@
 //! binaries before.
 
 mod curve_topology;
+mod fuzz;
 mod reader_fuzz;
 mod space_curve;
 mod surface;

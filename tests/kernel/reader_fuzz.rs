@@ -8,6 +8,7 @@
 
 use limn::io::{read_model_bytes, Place, ReadError};
 use limn::model::{Format, Model, ModelInfo, WeldTolerance};
+use limn::testing::fuzz::mutate::{iges_fields, line_spans, number_tokens};
 use proptest::prelude::*;
 use proptest::test_runner::FileFailurePersistence;
 use std::sync::mpsc;
@@ -296,69 +297,6 @@ fn mutation() -> impl Strategy<Value = Mutation> {
         1 => (any::<usize>(), any::<usize>()).prop_map(|(a, b)| Mutation::SwapLines(a, b)),
         4 => (any::<usize>(), garbage()).prop_map(|(k, g)| Mutation::ReplaceIgesField(k, g)),
     ]
-}
-
-/// The fields of the IGES records in `bytes`: (line start, field start, field end, width of
-/// the data region that must be kept). D records give their nine 8-column fields; G and P
-/// records the number tokens of their data columns (1-72 and 1-64).
-fn iges_fields(bytes: &[u8]) -> Vec<(usize, usize, usize, usize)> {
-    let mut fields = Vec::new();
-    for (a, b) in line_spans(bytes) {
-        let line = &bytes[a..b];
-        if line.len() < 80 || !line[..80].is_ascii() {
-            continue;
-        }
-        match line[72] {
-            b'D' => fields.extend((0..9).map(|f| (a, a + 8 * f, a + 8 * f + 8, 72))),
-            section @ (b'G' | b'P') => {
-                let width = if section == b'P' { 64 } else { 72 };
-                fields.extend(
-                    number_tokens(&line[..width])
-                        .into_iter()
-                        .map(|(x, y)| (a, a + x, a + y, width)),
-                );
-            }
-            _ => {}
-        }
-    }
-    fields
-}
-
-/// The byte ranges of number-like tokens: runs of `0-9 . + - e E d D` holding a digit.
-fn number_tokens(bytes: &[u8]) -> Vec<(usize, usize)> {
-    let numeric = |b: u8| b.is_ascii_digit() || b"+-.eEdD".contains(&b);
-    let mut spans = Vec::new();
-    let mut i = 0;
-    while i < bytes.len() {
-        if numeric(bytes[i]) {
-            let start = i;
-            while i < bytes.len() && numeric(bytes[i]) {
-                i += 1;
-            }
-            if bytes[start..i].iter().any(u8::is_ascii_digit) {
-                spans.push((start, i));
-            }
-        } else {
-            i += 1;
-        }
-    }
-    spans
-}
-
-/// Line ranges, each with its line break.
-fn line_spans(bytes: &[u8]) -> Vec<(usize, usize)> {
-    let mut spans = Vec::new();
-    let mut start = 0;
-    for (i, &b) in bytes.iter().enumerate() {
-        if b == b'\n' {
-            spans.push((start, i + 1));
-            start = i + 1;
-        }
-    }
-    if start < bytes.len() {
-        spans.push((start, bytes.len()));
-    }
-    spans
 }
 
 fn apply(bytes: &mut Vec<u8>, m: &Mutation) {

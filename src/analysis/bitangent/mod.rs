@@ -3,5 +3,6 @@
 //! and planes tangent along whole lines ([`tangent_lines`]).
 
 pub mod curves;
+pub mod result;
 pub mod system;
 pub mod tangent_lines;

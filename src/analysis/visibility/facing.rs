@@ -229,17 +229,27 @@ mod tests {
 
     #[test]
     fn a_sign_below_f64_is_decided_up_the_ladder_and_counted() {
-        // A unit square in z = 0 seen from the eye (0, 0, 10^-400) just above it:
-        // g = n·(E − S) = 10^-400 everywhere, which no f64 interval separates from 0; MPFR's
-        // exponent range does. (A direction would be scaled into range first: `View::working`.)
-        let p = |x: i64, y: i64| [Rational::from(x), Rational::from(y), Rational::new()];
-        let sq =
-            RationalPatch::polynomial([1, 1], vec![p(0, 0), p(0, 1), p(1, 0), p(1, 1)]).unwrap();
+        // A flat patch in z = 0, (u, v) ↦ (u, v (a + u)) with a = 10^-400, seen along
+        // (0, 0, −1): g = −(a + u), whose Bernstein coefficients −a and −(a + 1) have the one
+        // sign, but no f64 interval separates −a from 0; MPFR's exponent range does. (g's
+        // largest coefficient is 1: its scale is not changed, unlike that of a g that is tiny
+        // everywhere, `proofs/silhouette-join.md`, "Scale".)
         let mut tiny = Rational::from(1);
         for _ in 0..400 {
             tiny /= 10;
         }
-        let view = View::Eye([Rational::new(), Rational::new(), tiny]);
+        let p = |x: Rational, y: Rational| [x, y, Rational::new()];
+        let sq = RationalPatch::polynomial(
+            [1, 1],
+            vec![
+                p(Rational::new(), Rational::new()),
+                p(Rational::new(), tiny.clone()),
+                p(Rational::from(1), Rational::new()),
+                p(Rational::from(1), tiny + Rational::from(1)),
+            ],
+        )
+        .unwrap();
+        let view = View::Direction([0, 0, -1].map(Rational::from));
         let mut counts = Escalations::default();
         let ladder = Ladder::default();
         let f = super::facing(&sq, &view, &mut Policy::new(&ladder, &mut counts));
