@@ -23,7 +23,7 @@ pub(crate) enum Command {
     /// Euler characteristic and genus of a model.
     Info(InfoArgs),
     /// The silhouette (contour generator) of a model for a view: curves with certified
-    /// topology (see README: accuracy of the drawn chords is not certified yet).
+    /// topology, and with --tol every drawn segment proven within the tolerance.
     Silhouette(SilhouetteArgs),
     /// Curves on a model that do not depend on a view, with certified topology (and accuracy
     /// with --tol): `parabolic` (Gaussian curvature zero), `flecnodal` (an asymptotic tangent

@@ -38,7 +38,7 @@ fn sphere_silhouette_json_contract() {
     let v: Value = serde_json::from_str(&out).unwrap();
     assert_eq!(
         v["certified"], false,
-        "accuracy is not certified yet, and says so"
+        "without --tol the accuracy is not certified, and it says so"
     );
     assert_eq!(v["topology_certified"], true);
     let curves = v["curves"].as_array().unwrap();
