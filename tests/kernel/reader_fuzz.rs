@@ -8,7 +8,7 @@
 
 use limn::io::{read_model_bytes, Place, ReadError};
 use limn::model::{Format, Model, ModelInfo, WeldTolerance};
-use limn::testing::fuzz::mutate::{iges_fields, line_spans, number_tokens};
+use limn::testing::fuzz::mutate::{iges_fields, line_spans, number_tokens, replace_iges_field};
 use proptest::prelude::*;
 use proptest::test_runner::FileFailurePersistence;
 use std::sync::mpsc;
@@ -49,33 +49,6 @@ struct Fixture {
     format: Format,
 }
 
-/// limn's native JSON: a rational Bézier patch, a NURBS surface with an interior knot, and a
-/// patch with the default kind and weights.
-fn json_fixture() -> String {
-    let grid = |nu: usize, nv: usize| -> String {
-        let pts: Vec<String> = (0..nu)
-            .flat_map(|i| (0..nv).map(move |j| format!("[{i}, {j}, \"{}/3\"]", (i * j) % 5)))
-            .collect();
-        pts.join(", ")
-    };
-    format!(
-        concat!(
-            "{{\"patches\": [\n",
-            "  {{\"kind\": \"bezier\", \"degree\": [2, 1],\n",
-            "   \"points\": [{}],\n",
-            "   \"weights\": [1, 2, \"3/2\", 1, 0.5, 1]}},\n",
-            "  {{\"kind\": \"nurbs\", \"degree\": [2, 2],\n",
-            "   \"knots_u\": [0, 0, 0, 0.5, 1, 1, 1], \"knots_v\": [0, 0, 0, 1, 1, 1],\n",
-            "   \"points\": [{}],\n",
-            "   \"weights\": [1, 1, 1, 2, 1, 1, 1, \"1/2\", 1, 1, 1, 1]}},\n",
-            "  {{\"degree\": [1, 1], \"points\": [[0, 0, 0], [0, 1, 0], [1, 0, 0], [1, 1, 1e-3]]}}\n",
-            "]}}\n"
-        ),
-        grid(3, 2),
-        grid(4, 3)
-    )
-}
-
 fn fixtures() -> &'static [Fixture] {
     static FIXTURES: OnceLock<Vec<Fixture>> = OnceLock::new();
     FIXTURES.get_or_init(|| {
@@ -89,7 +62,7 @@ fn fixtures() -> &'static [Fixture] {
         let all = vec![
             Fixture {
                 name: "fuzz.json",
-                bytes: json_fixture().into_bytes(),
+                bytes: limn::testing::fuzz::json_sample().into_bytes(),
                 format: Format::Json,
             },
             file("fixtures/bezier/teapot.bpt", Format::Bpt),
@@ -353,20 +326,8 @@ fn apply(bytes: &mut Vec<u8>, m: &Mutation) {
         Mutation::ReplaceIgesField(k, g) => {
             let fields = iges_fields(bytes);
             if !fields.is_empty() {
-                let (line, x, y, width) = fields[k % fields.len()];
                 let g = g.replace(['\n', '\r'], " ");
-                let text: Vec<u8> = if bytes[line + 72] == b'D' {
-                    // A D field: right-aligned in its 8 columns.
-                    let t = format!("{g:>8}").into_bytes();
-                    t[t.len().saturating_sub(8)..].to_vec()
-                } else {
-                    g.into_bytes()
-                };
-                let mut data = bytes[line..line + width].to_vec();
-                data.splice(x - line..y - line, text);
-                // Keep the record 80 columns: cut or pad the data region.
-                data.resize(width, b' ');
-                bytes.splice(line..line + width, data);
+                replace_iges_field(bytes, fields[k % fields.len()], &g);
             }
         }
         _ => {}

@@ -27,6 +27,8 @@ mod argv;
 pub mod mutate;
 mod readers;
 
+pub use readers::json_sample;
+
 use std::collections::HashMap;
 use std::fmt;
 use std::path::{Path, PathBuf};

@@ -377,14 +377,16 @@ fn iges_field(rng: &mut Rng, bytes: &mut Vec<u8>) {
     if fields.is_empty() {
         return;
     }
-    let (line, x, y, width) = fields[rng.below(fields.len())];
-    let g: String = rng
-        .pick(extreme_numerals())
-        .chars()
-        .filter(char::is_ascii)
-        .collect();
+    let g = rng.pick(extreme_numerals()).clone();
+    replace_iges_field(bytes, fields[rng.below(fields.len())], &g);
+}
+
+/// Writes `g` (its ASCII characters) over one field of [`iges_fields`], right-aligned in a D
+/// field's 8 columns, and keeps the record 80 columns wide (the data region cut or padded).
+pub fn replace_iges_field(bytes: &mut Vec<u8>, field: (usize, usize, usize, usize), g: &str) {
+    let (line, x, y, width) = field;
+    let g: String = g.chars().filter(char::is_ascii).collect();
     let text: Vec<u8> = if bytes[line + 72] == b'D' {
-        // A D field: right-aligned in its 8 columns.
         let t = format!("{g:>8}").into_bytes();
         t[t.len().saturating_sub(8)..].to_vec()
     } else {

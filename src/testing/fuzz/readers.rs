@@ -75,6 +75,34 @@ fn files_under(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
     }
 }
 
+/// limn's native JSON with one of each kind of patch: a rational Bézier patch, a NURBS
+/// surface with an interior knot, and a patch with the default kind and weights (a seed of
+/// the fuzzer, and a fixture of the readers' property tests).
+pub fn json_sample() -> String {
+    let grid = |nu: usize, nv: usize| -> String {
+        let pts: Vec<String> = (0..nu)
+            .flat_map(|i| (0..nv).map(move |j| format!("[{i}, {j}, \"{}/3\"]", (i * j) % 5)))
+            .collect();
+        pts.join(", ")
+    };
+    format!(
+        concat!(
+            "{{\"patches\": [\n",
+            "  {{\"kind\": \"bezier\", \"degree\": [2, 1],\n",
+            "   \"points\": [{}],\n",
+            "   \"weights\": [1, 2, \"3/2\", 1, 0.5, 1]}},\n",
+            "  {{\"kind\": \"nurbs\", \"degree\": [2, 2],\n",
+            "   \"knots_u\": [0, 0, 0, 0.5, 1, 1, 1], \"knots_v\": [0, 0, 0, 1, 1, 1],\n",
+            "   \"points\": [{}],\n",
+            "   \"weights\": [1, 1, 1, 2, 1, 1, 1, \"1/2\", 1, 1, 1, 1]}},\n",
+            "  {{\"degree\": [1, 1], \"points\": [[0, 0, 0], [0, 1, 0], [1, 0, 0], [1, 1, 1e-3]]}}\n",
+            "]}}\n"
+        ),
+        grid(3, 2),
+        grid(4, 3)
+    )
+}
+
 /// Small generated models of each format.
 fn generated(format: Format) -> Vec<Input> {
     let input = |name: &str, text: String| Input {
@@ -83,14 +111,6 @@ fn generated(format: Format) -> Vec<Input> {
     };
     match format {
         Format::Json => {
-            let grid = |nu: usize, nv: usize| -> String {
-                let pts: Vec<String> = (0..nu)
-                    .flat_map(|i| {
-                        (0..nv).map(move |j| format!("[{i}, {j}, \"{}/3\"]", (i * j) % 5))
-                    })
-                    .collect();
-                pts.join(", ")
-            };
             let teapot = crate::testing::teapot();
             let patches: Vec<_> = teapot
                 .patches
@@ -99,25 +119,7 @@ fn generated(format: Format) -> Vec<Input> {
                 .map(|p| p.surface.clone())
                 .collect();
             vec![
-                input(
-                    "mixed.json",
-                    format!(
-                        concat!(
-                            "{{\"patches\": [\n",
-                            "  {{\"kind\": \"bezier\", \"degree\": [2, 1],\n",
-                            "   \"points\": [{}],\n",
-                            "   \"weights\": [1, 2, \"3/2\", 1, 0.5, 1]}},\n",
-                            "  {{\"kind\": \"nurbs\", \"degree\": [2, 2],\n",
-                            "   \"knots_u\": [0, 0, 0, 0.5, 1, 1, 1], \"knots_v\": [0, 0, 0, 1, 1, 1],\n",
-                            "   \"points\": [{}],\n",
-                            "   \"weights\": [1, 1, 1, 2, 1, 1, 1, \"1/2\", 1, 1, 1, 1]}},\n",
-                            "  {{\"degree\": [1, 1], \"points\": [[0, 0, 0], [0, 1, 0], [1, 0, 0], [1, 1, 1e-3]]}}\n",
-                            "]}}\n"
-                        ),
-                        grid(3, 2),
-                        grid(4, 3)
-                    ),
-                ),
+                input("mixed.json", json_sample()),
                 input("teapot2.json", crate::io::write_model(&patches)),
                 input(
                     "quad.json",
