@@ -457,3 +457,62 @@ fn extreme_weights_respect_the_time_limit() {
     assert!(took.as_secs_f64() < 60.0, "{took:?}");
     println!("weights 1e-300..1e300 under a 0.5 s limit: {took:?}");
 }
+
+/// The length of the pieces of a drawing with QI `qi`.
+fn length_with_qi(h: &HiddenLines, qi: Option<usize>) -> f64 {
+    h.pieces
+        .iter()
+        .filter(|p| p.qi == qi)
+        .flat_map(|p| p.points.windows(2))
+        .map(|w| {
+            (0..3)
+                .map(|k| (w[1][k] - w[0][k]).powi(2))
+                .sum::<f64>()
+                .sqrt()
+        })
+        .sum()
+}
+
+/// An eye at `1e308 (1, 1, 1)` (issue 26 §2; `proofs/projection.md`): the image and depth are
+/// written relative to the model, so the drawing is certified and is the drawing from
+/// `1000 (1, 1, 1)` up to the perspective (before, every piece was unresolved: the image
+/// polynomials overflowed f64).
+#[test]
+fn an_eye_very_far_away_draws_like_a_far_one() {
+    let m = Model::from_patches(Format::Json, shapes::sphere(&q(1)));
+    let opts = HlrOptions::default().with_weld(WeldTolerance::Exact);
+    let big = limn::number::parse_exact("1e308").unwrap();
+    let far = hidden_lines(&m, &View::Eye([big.clone(), big.clone(), big]), &opts).unwrap();
+    let near = hidden_lines(&m, &View::Eye([q(1000), q(1000), q(1000)]), &opts).unwrap();
+    for h in [&far, &near] {
+        assert!(h.is_certified());
+        assert!(h
+            .pieces
+            .iter()
+            .filter(|p| p.kind == LineKind::Silhouette)
+            .all(|p| p.qi == Some(0)));
+    }
+    for qi in [Some(0), Some(1)] {
+        let (a, b) = (length_with_qi(&far, qi), length_with_qi(&near, qi));
+        assert!((a - b).abs() < 0.01 * b, "QI {qi:?}: {a} against {b}");
+    }
+}
+
+/// An eye written with 10,000 digits (`3 + 10⁻¹⁰⁰⁰⁰`) under a time limit of 0.5 s (issue 26 §2,
+/// a fuzzer's finding: 13.6 s with `--time-limit 2` on an IGES part): the image axes carry the
+/// eye's digits once, the depth axis is short (`proofs/projection.md`), and past the deadline
+/// the segments are set up without their tangents (unresolved by the time limit).
+#[test]
+fn a_long_exact_eye_respects_the_time_limit() {
+    let m = Model::from_patches(Format::Json, shapes::sphere(&q(1)));
+    let e = Rational::from(3) + limn::number::parse_exact("1e-10000").unwrap();
+    let view = View::Eye([e, Rational::from((1, 3)), q(0)]);
+    let mut opts = HlrOptions::default().with_weld(WeldTolerance::Exact);
+    let start = std::time::Instant::now();
+    opts.curve.deadline = Some(start + std::time::Duration::from_millis(500));
+    let h = hidden_lines(&m, &view, &opts).unwrap();
+    let took = start.elapsed();
+    assert!(h.pieces.iter().all(|p| p.certified || p.reason.is_some()));
+    assert!(took.as_secs_f64() < 60.0, "{took:?}");
+    println!("an eye of 10,000 digits under a 0.5 s limit: {took:?}");
+}

@@ -28,10 +28,10 @@ pub(super) fn candidate_lines(
     sil: &Silhouette,
     policy: &mut Policy,
 ) -> Vec<Segment> {
-    let mut segments = boundary_segments(scene);
+    let mut segments = boundary_segments(scene, policy);
     let arcs = silhouette_segments(scene, sil, &mut segments, policy);
     let first_chain = segments.len() + arcs.iter().map(|a| a.chain).max().unwrap_or(0) + 1;
-    let lines = zero_line_segments(scene, sil, &mut segments, &arcs, first_chain);
+    let lines = zero_line_segments(scene, sil, &mut segments, &arcs, first_chain, policy);
     segments.extend(arcs);
     segments.extend(lines);
     segments
@@ -152,6 +152,13 @@ pub(super) fn tangent_polys_arc(scene: &Scene, patch: usize, g: &Poly) -> [Poly;
     [0, 1].map(|r| &(&j[r][0] * &t[0]) + &(&j[r][1] * &t[1]))
 }
 
+/// The tangent of a segment set up past the deadline: the zero field in `nvars` variables,
+/// from which nothing is proven (no direction is strictly monotone along it, no corner has a
+/// tangent), so the segment stays unresolved.
+fn untraced_tangent(nvars: usize) -> [Poly; 2] {
+    [(); 2].map(|()| Poly::constant(nvars, Rational::new()))
+}
+
 /// The segment's image is strictly monotone along `e` if `e · tangent` has a strict sign on
 /// its box; the sign is returned.
 pub(super) fn monotone_along(
@@ -221,7 +228,7 @@ pub(super) fn side_uv(
 }
 
 /// The boundary lines: each distinct edge once, as one segment.
-fn boundary_segments(scene: &Scene) -> Vec<Segment> {
+fn boundary_segments(scene: &Scene, policy: &Policy) -> Vec<Segment> {
     let mut out = Vec::new();
     for (chain, users) in scene.adjacency.edges.iter().enumerate() {
         let first = users[0];
@@ -253,6 +260,7 @@ fn boundary_segments(scene: &Scene) -> Vec<Segment> {
             vertices,
             on,
             None,
+            policy,
         ));
     }
     out
@@ -400,7 +408,11 @@ fn silhouette_segments(
                 let (lo, hi) = (dyadic_below(range[0]), dyadic_above(range[1]));
                 domain[axis] = (domain[axis].0.max(lo), domain[axis].1.min(hi));
                 let domain = narrow_to_curve(&solved.g, &domain, axis);
-                let tangent = tangent_polys_arc(scene, i, &solved.g);
+                let tangent = if policy.past_deadline() {
+                    untraced_tangent(2)
+                } else {
+                    tangent_polys_arc(scene, i, &solved.g)
+                };
                 let vertices: Vec<Vertex> = [a, b]
                     .iter()
                     .map(|id| crossing_vertex(scene, boundary, topo, i, id, axis))
@@ -636,6 +648,7 @@ fn zero_line_segments(
     boundary: &mut [Segment],
     arcs: &[Segment],
     first_chain: usize,
+    policy: &Policy,
 ) -> Vec<Segment> {
     let mut out = Vec::new();
     let mut chain = first_chain;
@@ -722,6 +735,7 @@ fn zero_line_segments(
                 vertices,
                 vec![(i, None, false)],
                 Some((axis, at)),
+                policy,
             ));
             chain += 1;
         }
@@ -741,8 +755,13 @@ fn exact_curve(
     vertices: Vec<Vertex>,
     on: Vec<(usize, Option<Edge>, bool)>,
     line: Option<(usize, Dyadic)>,
+    policy: &Policy,
 ) -> Segment {
-    let tangent = tangent_polys_side(&image);
+    let tangent = if policy.past_deadline() {
+        untraced_tangent(1)
+    } else {
+        tangent_polys_side(&image)
+    };
     let domain = vec![(Dyadic::ZERO, Dyadic::ONE)];
     Segment {
         kind,
