@@ -4,8 +4,8 @@ translation measurements in docs/performance.md:
 
     python3 tools/adversarial_models.py OUT
 
-- grid12100.json, grid600.json: 110 x 110 and 25 x 24 grids of bilinear patches (heights
-  ((7i + 3j) mod 5) / 10);
+- grid12100.json, grid600.json, grid360000.json: 110 x 110, 25 x 24 and 600 x 600 (42 MB) grids
+  of bilinear patches (heights ((7i + 3j) mod 5) / 10);
 - weights.json: one biquadratic patch whose weights span 1e-300..1e300;
 - exponent.json: one bilinear patch with a coordinate "1e5000";
 - sphere_shifted_100.json, sphere_shifted_1e6.json, torus_shifted_1e6.json: the exact sphere
@@ -37,13 +37,14 @@ def shifted(path, t):
 
 
 def main():
-    if len(sys.argv) != 2:
-        sys.exit("usage: adversarial_models.py OUT")
+    if len(sys.argv) != 2 or sys.argv[1].startswith("-"):
+        sys.exit("usage: adversarial_models.py OUT (a directory, made if missing)\n" + __doc__)
     out = sys.argv[1]
     os.makedirs(out, exist_ok=True)
     models = {
         "grid12100.json": grid(110, 110),
         "grid600.json": grid(25, 24),
+        "grid360000.json": grid(600, 600),
         "weights.json": {"patches": [{
             "kind": "bezier", "degree": [2, 2],
             "points": [[i, j, (i * j) % 3] for i in range(3) for j in range(3)],

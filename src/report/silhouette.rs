@@ -152,7 +152,7 @@ impl SilhouetteReport {
             );
         }
         for e in &r.unjoined_edges {
-            t += &format!("unjoined edge: patch {} {:?} / patch {} {:?} (no proven join: the two patches' functions are not proportional there (nor, for silhouettes, the normals parallel), and their zeros on it are not proven apart; or the curve meets a side on which it lies at a point known only within an interval)\n", e.0, e.1, e.2, e.3);
+            t += &format!("unjoined edge: patch {} {:?} / patch {} {:?} (no proven join: the two patches' functions are not proportional there (nor, for silhouettes, the normals parallel), and their zeros on it are not proven apart; or the curve meets a side on which it lies at a point known only within an interval; or the time limit was reached before the edge was examined)\n", e.0, e.1, e.2, e.3);
         }
         if !r.ending_edges.is_empty() {
             t += &format!(

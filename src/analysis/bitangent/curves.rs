@@ -267,21 +267,11 @@ pub fn pair_bitangents(
         within_tolerance: options.tolerance.is_none(),
     };
     // Past the deadline before any set-up (the jets and evaluators of both patches are exact
-    // products, the costliest step of a small pair): the whole pair is unresolved, at the
-    // patches' centres (evaluated exactly).
-    if options
-        .solver
-        .deadline
-        .is_some_and(|d| std::time::Instant::now() >= d)
-    {
+    // products, the costliest step of a small pair): the whole pair is unresolved.
+    if past(options.solver.deadline) {
         let half = Rational::from((1, 2));
         let at = [first, second].map(|p| p.eval(&half, &half).map(|c| c.to_f64()));
-        out.unresolved.push(BitangentUnresolved {
-            patches: [i, j],
-            at,
-            cell: vec![[0.0, 1.0]; 4],
-            reason: Reason::TimeLimit,
-        });
+        out.unresolved.push(not_searched([i, j], at));
         return out;
     }
     let sides = [first, second].map(|patch| Side {
@@ -570,6 +560,39 @@ pub fn bitangent_curves(model: &Model, opts: &BitangentOptions) -> Result<Bitang
     Ok(r.in_model_frame(&frame, opts.tolerance))
 }
 
+/// Whether a deadline has passed.
+fn past(deadline: Option<std::time::Instant>) -> bool {
+    deadline.is_some_and(|d| std::time::Instant::now() >= d)
+}
+
+/// A pair left unresolved by the time limit before it was set up, located at the patches'
+/// centres.
+fn not_searched(patches: [usize; 2], at: [[f64; 3]; 2]) -> BitangentUnresolved {
+    BitangentUnresolved {
+        patches,
+        at,
+        cell: vec![[0.0, 1.0]; 4],
+        reason: Reason::TimeLimit,
+    }
+}
+
+/// A pair past the deadline: its result with only [`not_searched`].
+fn late_pair(patches: [usize; 2], at: [[f64; 3]; 2], opts: &BitangentOptions) -> PairBitangents {
+    PairBitangents {
+        patches,
+        branches: Vec::new(),
+        unresolved: vec![not_searched(patches, at)],
+        singular_points: Vec::new(),
+        plane_sets: Vec::new(),
+        tangent_lines: [Vec::new(), Vec::new()],
+        boxes: 0,
+        escalations: Escalations::default(),
+        divided_sides: Vec::new(),
+        error_bound: None,
+        within_tolerance: opts.tolerance.is_none(),
+    }
+}
+
 /// [`bitangent_curves`] of the model as it is given.
 fn pairs(model: &Model, opts: &BitangentOptions) -> Result<BitangentCurves, Error> {
     let patches: Vec<&RationalPatch> = model.patches.iter().map(|p| &p.surface).collect();
@@ -593,17 +616,26 @@ fn pairs(model: &Model, opts: &BitangentOptions) -> Result<BitangentCurves, Erro
         .par_iter()
         .map(|p| {
             // Past the deadline the pair is kept, and left unresolved by its own check.
-            let late = opts
-                .solver
-                .deadline
-                .is_some_and(|d| std::time::Instant::now() >= d);
-            !late && DiagonalTest::new(p).excludes([0.0, 0.0], [1.0, 1.0])
+            !past(opts.solver.deadline) && DiagonalTest::new(p).excludes([0.0, 0.0], [1.0, 1.0])
         })
         .collect();
     todo.retain(|&(i, j)| i != j || !excluded[i]);
+    // The patches' centres, for the pairs the deadline leaves unsearched (once per patch, not
+    // an exact evaluation per pair: 180,000 pairs of 600 patches cost seconds that way).
+    let half = Rational::from((1, 2));
+    let centres: Vec<[f64; 3]> = patches
+        .par_iter()
+        .map(|p| p.eval(&half, &half).map(|c| c.to_f64()))
+        .collect();
     let mut pairs: Vec<PairBitangents> = todo
         .par_iter()
-        .map(|&(i, j)| pair_bitangents(patches[i], i, patches[j], j, opts))
+        .map(|&(i, j)| {
+            if past(opts.solver.deadline) {
+                late_pair([i, j], [centres[i], centres[j]], opts)
+            } else {
+                pair_bitangents(patches[i], i, patches[j], j, opts)
+            }
+        })
         .collect();
     // A line along which a plane is tangent, found through one pair, serves every pair of its
     // patch: the sets a pair's own singular points missed (the rim's opposite patches).

@@ -278,6 +278,14 @@ pub fn model_curves(
             continue;
         }
         let (a, b) = (class[0], class[1]);
+        // Past the deadline the edge is left unjoined (the silhouette is then not certified).
+        if opts
+            .deadline
+            .is_some_and(|d| std::time::Instant::now() >= d)
+        {
+            unjoined.push((a.patch, a.edge, b.patch, b.edge));
+            continue;
+        }
         let normals = rules.parallel_normal_joins.then_some(&patches[..]);
         let joined = join_side(
             &tops,

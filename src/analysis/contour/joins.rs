@@ -48,6 +48,29 @@ pub(crate) fn proportional(
         .zip(q.coeffs())
         .all(|(a, b)| Rational::from(a * &q.coeffs()[k]) == Rational::from(b * &p.coeffs()[k]))
 }
+/// The unnormalized normal `Ñ` of [`RationalPatch::normal`] on one side, in the side's
+/// parameter: the same formula with every factor restricted to the side first (restriction
+/// commutes with products and sums, and the derivatives are taken before it), so products of
+/// univariate polynomials instead of bivariate ones.
+fn normal_on_side(patch: &RationalPatch, e: Edge) -> [Bernstein<Rational>; 3] {
+    use crate::surface::normal::cross;
+    let on = |p: &Bernstein<Rational>| side_polynomial(p, e);
+    if patch.is_polynomial() {
+        let (tu, tv) = patch.tangents();
+        return cross(&tu.each_ref().map(on), &tv.each_ref().map(on));
+    }
+    let [px, py, pz, w] = patch.homogeneous();
+    let p = [px, py, pz];
+    let pu = p.each_ref().map(|c| on(&c.deriv(0)));
+    let pv = p.each_ref().map(|c| on(&c.deriv(1)));
+    let (wu, wv) = (on(&w.deriv(0)), on(&w.deriv(1)));
+    let (p, w) = (p.each_ref().map(on), on(&w));
+    let a = cross(&pu, &pv);
+    let b = cross(&pv, &p);
+    let c = cross(&p, &pu);
+    [0, 1, 2].map(|k| &(&(&w * &a[k]) + &(&wu * &b[k])) + &(&wv * &c[k]))
+}
+
 /// Whether the two patches' exact normals are parallel and nonzero along the shared edge
 /// (tangent-plane continuity, proven exactly): `Ñ_a × Ñ_b ≡ 0` there and `Ñ_a · Ñ_b` has no
 /// root on the edge. Then `g_a = λ g_b` with `λ ≠ 0` along the edge, for every view, so the
@@ -60,10 +83,9 @@ pub(crate) fn parallel_normals(
     reversed: bool,
     policy: &mut Policy,
 ) -> bool {
-    let (na, nb) = (pa.normal(), pb.normal());
-    let side = |n: &[Bernstein<Rational>; 3], e: Edge, rev: bool| -> [Bernstein<Rational>; 3] {
-        [0, 1, 2].map(|k| {
-            let p = side_polynomial(&n[k], e);
+    let side = |patch: &RationalPatch, e: Edge, rev: bool| -> [Bernstein<Rational>; 3] {
+        let n = normal_on_side(patch, e);
+        n.map(|p| {
             if rev {
                 let mut c = p.coeffs().to_vec();
                 c.reverse();
@@ -73,7 +95,7 @@ pub(crate) fn parallel_normals(
             }
         })
     };
-    let (a, b) = (side(&na, ea, false), side(&nb, eb, reversed));
+    let (a, b) = (side(pa, ea, false), side(pb, eb, reversed));
     let cross_zero = (0..3).all(|k| {
         let (i, j) = ((k + 1) % 3, (k + 2) % 3);
         (&(&a[i] * &b[j]) - &(&a[j] * &b[i])).is_zero()
@@ -448,4 +470,32 @@ pub(crate) fn join_one_sided(
         joins.union((other.patch, id), (zero.patch, line_point(fixed, c, t)));
     }
     true
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::testing::shapes;
+
+    /// The normal restricted to a side equals the side of the normal, for rational patches
+    /// (a torus, a sphere with poles) and a polynomial one.
+    #[test]
+    fn the_normal_on_a_side_is_the_side_of_the_normal() {
+        let mut patches = shapes::torus(&Rational::from(3), &Rational::from(1));
+        patches.extend(shapes::sphere(&Rational::from(2)));
+        patches.push(shapes::double_well(false));
+        for (i, patch) in patches.iter().enumerate() {
+            let full = patch.normal();
+            for e in Edge::ALL {
+                let side = normal_on_side(patch, e);
+                for k in 0..3 {
+                    let want = side_polynomial(&full[k], e);
+                    for t in [0, 1, 2, 5, 7] {
+                        let t = [Rational::from((t, 7))];
+                        assert_eq!(side[k].eval(&t), want.eval(&t), "patch {i} {e:?} {k}");
+                    }
+                }
+            }
+        }
+    }
 }

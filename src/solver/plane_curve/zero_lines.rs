@@ -267,6 +267,23 @@ pub fn solve_curve_lines(
     g: &Bernstein<Rational>,
     opts: &crate::solver::CurveOptions,
 ) -> LinedCurve {
+    // Past the deadline nothing is set up (the division of lines and the derivatives are
+    // exact, a cost per patch): the whole square is unresolved by the time limit.
+    if opts.past_deadline() && !g.is_zero() {
+        let topology = CurveTopology {
+            unresolved: vec![crate::solver::plane_curve::Unresolved {
+                cell: DyadicBox::UNIT,
+                reason: Reason::TimeLimit,
+            }],
+            ..CurveTopology::default()
+        };
+        return LinedCurve {
+            quotient: g.clone(),
+            lines: Vec::new(),
+            solved: topology.clone(),
+            topology,
+        };
+    }
     // A line deeper than the subdivision may go cannot be made a grid line: not divided.
     let mut stats = Escalations::default();
     let (quotient, lines) = divide_zero_lines(
