@@ -114,6 +114,14 @@ pub fn working_direction(d: &[Rational; 3]) -> [Rational; 3] {
     d.clone().map(|c| c * &scale)
 }
 
+/// At most 40 characters of `text` (then "…"), for messages that quote an argument.
+fn shortened(text: &str) -> String {
+    match text.char_indices().nth(40) {
+        Some((at, _)) => format!("{}…", &text[..at]),
+        None => text.to_string(),
+    }
+}
+
 /// Parses "x,y,z" into an exact vector.
 ///
 /// # Errors
@@ -121,11 +129,14 @@ pub fn working_direction(d: &[Rational; 3]) -> [Rational; 3] {
 pub fn parse_vector(text: &str) -> Result<[Rational; 3], String> {
     let parts: Vec<&str> = text.split(',').collect();
     if parts.len() != 3 {
-        return Err(format!("expected three numbers x,y,z, found {text:?}"));
+        return Err(format!(
+            "expected three numbers x,y,z, found {:?}",
+            shortened(text)
+        ));
     }
     let mut v = Vec::with_capacity(3);
     for p in parts {
-        v.push(crate::number::parse_exact(p).map_err(|e| format!("{text:?}: {e}"))?);
+        v.push(crate::number::parse_exact(p).map_err(|e| format!("{:?}: {e}", shortened(text)))?);
     }
     let v: [Rational; 3] = v.try_into().map_err(|_| "three numbers".to_string())?;
     Ok(v)

@@ -145,6 +145,13 @@ fn bad_arguments_exit_2_with_one_line() {
         assert_eq!(err.trim().lines().count(), 1, "{args:?}: {err}");
         assert!(err.contains(needle), "{args:?}: {err}");
     }
+    // A direction of 10,000 digits: the message says the limit and quotes a short prefix, not
+    // the whole argument.
+    let long = format!("{},1,1", "7".repeat(10_000));
+    let (code, _, err) = limn(&["hlr", m, "--dir", &long]);
+    assert_eq!(code, Some(2));
+    assert!(err.contains("more than the 2000 limn reads"), "{err}");
+    assert!(err.len() < 300, "{} characters", err.len());
 }
 
 #[test]
