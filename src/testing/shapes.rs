@@ -109,6 +109,28 @@ pub fn plane_square(s: &Rational) -> RationalPatch {
     RationalPatch::polynomial([1, 1], vec![p(&z, &z), p(&z, s), p(s, &z), p(s, s)]).expect("valid")
 }
 
+/// An `nx` x `ny` grid of unit bilinear patches, patch `(i, j)` over `[i, i+1] x [j, j+1]`,
+/// with heights `((7a + 3b) mod 5) / 10` at the grid points `(a, b)`: a C0 surface of many
+/// patches whose neighbours are not tangent-continuous (the adversarial grids of issue 26,
+/// as `tools/adversarial_models.py` writes them).
+pub fn bilinear_grid(nx: i64, ny: i64) -> Vec<RationalPatch> {
+    let z = |a: i64, b: i64| Rational::from(((a * 7 + b * 3) % 5, 10));
+    let p = |a: i64, b: i64| [q(a), q(b), z(a, b)];
+    let mut patches = Vec::new();
+    for i in 0..nx {
+        for j in 0..ny {
+            patches.push(
+                RationalPatch::polynomial(
+                    [1, 1],
+                    vec![p(i, j), p(i, j + 1), p(i + 1, j), p(i + 1, j + 1)],
+                )
+                .expect("valid"),
+            );
+        }
+    }
+    patches
+}
+
 /// An exact rotation matrix with rational entries: about axis 0, 1 or 2 by the angle whose
 /// cosine and sine are `(a² − b²)/(a² + b²)` and `2ab/(a² + b²)` (a Pythagorean rotation).
 pub fn rotation(axis: usize, a: i64, b: i64) -> [[Rational; 3]; 3] {

@@ -360,22 +360,7 @@ fn a_plane_found_through_one_pair_explains_the_others() {
 /// its exact set-up (600 patches with `--time-limit 1` ran 12 s before, 2.6 s after).
 #[test]
 fn many_pairs_respect_the_time_limit() {
-    let q = |n: i64| Rational::from(n);
-    let z = |a: i64, b: i64| Rational::from(((a * 7 + b * 3) % 5, 10));
-    let mut patches = Vec::new();
-    for i in 0..12 {
-        for j in 0..12 {
-            let p = |a: i64, b: i64| [q(a), q(b), z(a, b)];
-            patches.push(
-                limn::surface::RationalPatch::polynomial(
-                    [1, 1],
-                    vec![p(i, j), p(i, j + 1), p(i + 1, j), p(i + 1, j + 1)],
-                )
-                .unwrap(),
-            );
-        }
-    }
-    let m = Model::from_patches(Format::Json, patches);
+    let m = Model::from_patches(Format::Json, shapes::bilinear_grid(12, 12));
     let start = std::time::Instant::now();
     let opts = BitangentOptions::default()
         .with_deadline(Some(start + std::time::Duration::from_millis(50)));

@@ -401,22 +401,7 @@ fn drawing_to_a_tolerance_on_the_sphere() {
 /// set-up before the search is not interrupted).
 #[test]
 fn a_large_grid_respects_the_time_limit() {
-    let n = 50i64;
-    let z = |a: i64, b: i64| Rational::from(((a * 7 + b * 3) % 5, 10));
-    let mut patches = Vec::new();
-    for i in 0..n {
-        for j in 0..n {
-            let p = |a: i64, b: i64| [Rational::from(a), Rational::from(b), z(a, b)];
-            patches.push(
-                RationalPatch::polynomial(
-                    [1, 1],
-                    vec![p(i, j), p(i, j + 1), p(i + 1, j), p(i + 1, j + 1)],
-                )
-                .unwrap(),
-            );
-        }
-    }
-    let m = Model::from_patches(Format::Json, patches);
+    let m = Model::from_patches(Format::Json, shapes::bilinear_grid(50, 50));
     let mut opts = HlrOptions::default().with_weld(WeldTolerance::Exact);
     let start = std::time::Instant::now();
     opts.curve.deadline = Some(start + std::time::Duration::from_millis(50));

@@ -754,22 +754,7 @@ fn an_eye_very_far_away_is_quick_and_certified() {
 /// unjoined), so the silhouette is not certified and every gap has its reason.
 #[test]
 fn a_large_grid_silhouette_respects_the_time_limit() {
-    let n = 100i64;
-    let z = |a: i64, b: i64| Rational::from(((a * 7 + b * 3) % 5, 10));
-    let mut patches = Vec::new();
-    for i in 0..n {
-        for j in 0..n {
-            let p = |a: i64, b: i64| [Rational::from(a), Rational::from(b), z(a, b)];
-            patches.push(
-                limn::surface::RationalPatch::polynomial(
-                    [1, 1],
-                    vec![p(i, j), p(i, j + 1), p(i + 1, j), p(i + 1, j + 1)],
-                )
-                .unwrap(),
-            );
-        }
-    }
-    let m = Model::from_patches(Format::Json, patches);
+    let m = Model::from_patches(Format::Json, shapes::bilinear_grid(100, 100));
     let start = std::time::Instant::now();
     let curve = CurveOptions {
         deadline: Some(start + std::time::Duration::from_millis(20)),

@@ -253,19 +253,7 @@ pub fn pair_bitangents(
     options: &BitangentOptions,
 ) -> PairBitangents {
     let same = i == j;
-    let mut out = PairBitangents {
-        patches: [i, j],
-        branches: Vec::new(),
-        unresolved: Vec::new(),
-        singular_points: Vec::new(),
-        plane_sets: Vec::new(),
-        tangent_lines: [Vec::new(), Vec::new()],
-        boxes: 0,
-        escalations: Escalations::default(),
-        divided_sides: Vec::new(),
-        error_bound: None,
-        within_tolerance: options.tolerance.is_none(),
-    };
+    let mut out = empty_pair([i, j], options);
     // Past the deadline before any set-up (the jets and evaluators of both patches are exact
     // products, the costliest step of a small pair): the whole pair is unresolved.
     if past(options.solver.deadline) {
@@ -578,10 +566,17 @@ fn not_searched(patches: [usize; 2], at: [[f64; 3]; 2]) -> BitangentUnresolved {
 
 /// A pair past the deadline: its result with only [`not_searched`].
 fn late_pair(patches: [usize; 2], at: [[f64; 3]; 2], opts: &BitangentOptions) -> PairBitangents {
+    let mut out = empty_pair(patches, opts);
+    out.unresolved.push(not_searched(patches, at));
+    out
+}
+
+/// A pair's result before anything is found.
+fn empty_pair(patches: [usize; 2], opts: &BitangentOptions) -> PairBitangents {
     PairBitangents {
         patches,
         branches: Vec::new(),
-        unresolved: vec![not_searched(patches, at)],
+        unresolved: Vec::new(),
         singular_points: Vec::new(),
         plane_sets: Vec::new(),
         tangent_lines: [Vec::new(), Vec::new()],
