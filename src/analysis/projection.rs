@@ -34,9 +34,9 @@ use crate::bernstein::Poly;
 pub struct Projection {
     /// The view.
     pub view: View,
-    /// First image axis (orthogonal to `d`).
+    /// First image axis (orthogonal to `d`; for an eye, to `r`, see [`EyeFrame`]).
     pub a: [Rational; 3],
-    /// Second image axis (`d × a`).
+    /// Second image axis (`d × a`; for an eye `± r × e_l`, see [`EyeFrame`]).
     pub b: [Rational; 3],
     /// The depth axis: the view direction, or for an eye the direction `r` from the eye to
     /// the model's bounding-box centre rounded to f64 (after scaling by a power of two), or
@@ -47,7 +47,7 @@ pub struct Projection {
     pub eye: Option<EyeFrame>,
 }
 
-/// The perspective frame of an eye `E` (`proofs/hidden-lines.md`, "The image of an eye"):
+/// The perspective frame of an eye `E` (`proofs/projection.md`, "An eye"):
 /// with `c` the model's bounding-box centre and `r = c − E`, the image axes `a`, `b` are
 /// exactly orthogonal to `r` and
 ///
