@@ -123,8 +123,7 @@ impl<'a> Policy<'a> {
 
     /// Whether the deadline has passed.
     pub fn past_deadline(&self) -> bool {
-        self.deadline
-            .is_some_and(|d| std::time::Instant::now() >= d)
+        past(self.deadline)
     }
 
     /// [`Ladder::decide`] on this policy's ladder, counted in its tally.
@@ -228,6 +227,11 @@ impl Ladder {
         stats.record(None);
         (None, None)
     }
+}
+
+/// Whether a deadline, if any, has passed: the one check behind every `--time-limit`.
+pub fn past(deadline: Option<std::time::Instant>) -> bool {
+    deadline.is_some_and(|d| std::time::Instant::now() >= d)
 }
 
 #[cfg(test)]

@@ -27,7 +27,7 @@ use crate::model::Model;
 use crate::number::{Interval, Number, Rational};
 use crate::reason::Reason;
 use crate::solver::chain::chain;
-use crate::solver::precision::Escalations;
+use crate::solver::precision::{past, Escalations};
 use crate::solver::space_curve::ArcAccept;
 use crate::solver::space_curve::{
     solve_space_curve_excluding, unwarp, unwarp_interval, warp, BoxVerdict, SpaceCurve,
@@ -546,11 +546,6 @@ pub fn bitangent_curves(model: &Model, opts: &BitangentOptions) -> Result<Bitang
     let frame = Frame::of(model);
     let r = pairs(&frame.model(model), opts)?;
     Ok(r.in_model_frame(&frame, opts.tolerance))
-}
-
-/// Whether a deadline has passed.
-fn past(deadline: Option<std::time::Instant>) -> bool {
-    deadline.is_some_and(|d| std::time::Instant::now() >= d)
 }
 
 /// A pair left unresolved by the time limit before it was set up, located at the patches'

@@ -279,10 +279,7 @@ pub fn model_curves(
         }
         let (a, b) = (class[0], class[1]);
         // Past the deadline the edge is left unjoined (the silhouette is then not certified).
-        if opts
-            .deadline
-            .is_some_and(|d| std::time::Instant::now() >= d)
-        {
+        if opts.past_deadline() {
             unjoined.push((a.patch, a.edge, b.patch, b.edge));
             continue;
         }

@@ -64,8 +64,7 @@ impl Default for CurveOptions {
 impl CurveOptions {
     /// Whether the deadline, if any, has passed.
     pub fn past_deadline(&self) -> bool {
-        self.deadline
-            .is_some_and(|d| std::time::Instant::now() >= d)
+        crate::solver::precision::past(self.deadline)
     }
 }
 
