@@ -155,9 +155,9 @@ impl Ladder {
 
     /// The exact polynomials restricted to the box `[lo, hi]` at the tightest level
     /// ([`Ladder::tightest`]), enclosed in f64 intervals, with the level used.
-    pub fn restricted_enclosures(
+    pub fn restricted_enclosures<P: std::borrow::Borrow<Bernstein<Rational>>>(
         &self,
-        exact: &[Bernstein<Rational>],
+        exact: &[P],
         lo: &[Rational],
         hi: &[Rational],
     ) -> (Vec<Bernstein<Interval>>, Level) {
@@ -174,14 +174,18 @@ impl Ladder {
                 exact
                     .iter()
                     .map(|e| {
-                        let m: Bernstein<MpInterval> = e.convert(prec);
+                        let m: Bernstein<MpInterval> = e.borrow().convert(prec);
                         m.restrict_box(&lm, &hm).map(MpInterval::to_interval)
                     })
                     .collect()
             }
             _ => exact
                 .iter()
-                .map(|e| e.restrict_box_rational(lo, hi).convert(Precision::F64))
+                .map(|e| {
+                    e.borrow()
+                        .restrict_box_rational(lo, hi)
+                        .convert(Precision::F64)
+                })
                 .collect(),
         };
         (polys, level)

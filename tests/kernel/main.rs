@@ -6,6 +6,7 @@
 mod curve_topology;
 mod fuzz;
 mod reader_fuzz;
+mod separable;
 mod space_curve;
 mod surface;
 mod system;

@@ -14,11 +14,19 @@
 //! `(∂g/∂u, ∂g/∂v)` and `g` filters; whether `g` vanishes at an isolated root is for the
 //! caller to decide. Written for any number of variables (up to the Bernstein limit), so
 //! later systems (bitangents, flecnodal points) use the same code.
+//!
+//! The subdivision loop is written once, over the trait `SquareSystem` (what a system does on
+//! a box: its restriction, exclusion, Jacobian and centre enclosures, splitting): the dense
+//! systems of [`solve_system`] implement it, and so do the systems of two groups of variables
+//! of [`separable`], whose equations are restricted group by group.
+
+pub mod separable;
 
 use crate::bernstein::Bernstein;
 use crate::number::{Interval, Number, Precision, Rational};
 use crate::solver::dyadic::Dyadic;
-use crate::solver::precision::{Escalations, Ladder};
+use crate::solver::precision::{Escalations, Ladder, Level};
+use std::cell::OnceCell;
 
 /// Budgets of the system solver.
 #[derive(Clone, Debug)]
@@ -131,22 +139,42 @@ pub(crate) fn inverse(m: &[Vec<f64>]) -> Option<Vec<Vec<f64>>> {
 /// those coordinates) if `K ⊂ (0, 1)^n` strictly, which proves exactly one zero in the box,
 /// inside K.
 pub fn krawczyk(square: &[Bernstein<Interval>]) -> Option<Vec<Interval>> {
-    let (c, m) = preconditioned(square)?;
-    let k = krawczyk_image(square, &c, &m);
+    krawczyk_unit(&dense_jacobian(square), || dense_centre(square))
+}
+
+/// [`krawczyk`] from an enclosure of the Jacobian over the unit box and (computed only if the
+/// Jacobian's midpoint is regular) enclosures of the values at its centre.
+fn krawczyk_unit(
+    jac: &[Vec<Interval>],
+    centre: impl FnOnce() -> Vec<Interval>,
+) -> Option<Vec<Interval>> {
+    let (c, m) = precondition(jac)?;
+    let k = krawczyk_image(&c, &m, &centre());
     k.iter().all(|x| x.lo() > 0.0 && x.hi() < 1.0).then_some(k)
 }
 
 /// The image `K = y − C f(y) + (I − C J)([0,1]^n − y)` of Krawczyk's operator on the unit box,
-/// at its centre.
-fn krawczyk_image(
-    square: &[Bernstein<Interval>],
-    c: &Matrix,
-    m: &[Vec<Interval>],
-) -> Vec<Interval> {
-    let n = square.len();
+/// at its centre `y`, from `f(y)`.
+fn krawczyk_image(c: &Matrix, m: &[Vec<Interval>], fy: &[Interval]) -> Vec<Interval> {
+    let n = fy.len();
     let y = vec![Interval::point(0.5); n];
-    let fy: Vec<Interval> = square.iter().map(|f| f.eval(&y)).collect();
-    krawczyk_operator(c, m, &y, &fy, &vec![Interval::new(-0.5, 0.5); n])
+    krawczyk_operator(c, m, &y, fy, &vec![Interval::new(-0.5, 0.5); n])
+}
+
+/// The values of polynomials at the centre of their unit box (enclosures).
+fn dense_centre(square: &[Bernstein<Interval>]) -> Vec<Interval> {
+    let y = vec![Interval::point(0.5); square.len()];
+    square.iter().map(|f| f.eval(&y)).collect()
+}
+
+/// An enclosure of the Jacobian of polynomials over their unit box: `∂f_i/∂x_j` by the hull of
+/// the coefficient differences.
+fn dense_jacobian(square: &[Bernstein<Interval>]) -> Vec<Vec<Interval>> {
+    let n = square.len();
+    square
+        .iter()
+        .map(|f| (0..n).map(|j| f.deriv_hull(j)).collect())
+        .collect()
 }
 
 /// `K = y − C f(y) + M dx`, with `M = I − C J` and `dx ∋ x − y` for every x of the box.
@@ -187,10 +215,16 @@ pub(crate) enum KrawczykVerdict {
 
 /// Krawczyk's operator on the box, once: a unique zero, none, or nothing proven.
 pub(crate) fn krawczyk_verdict(square: &[Bernstein<Interval>]) -> KrawczykVerdict {
-    let Some((c, m)) = preconditioned(square) else {
+    verdict_of(&dense_jacobian(square), || dense_centre(square))
+}
+
+/// [`krawczyk_verdict`] from an enclosure of the Jacobian over the unit box and (computed only
+/// if the Jacobian's midpoint is regular) enclosures of the values at its centre.
+fn verdict_of(jac: &[Vec<Interval>], centre: impl FnOnce() -> Vec<Interval>) -> KrawczykVerdict {
+    let Some((c, m)) = precondition(jac) else {
         return KrawczykVerdict::Unknown { worth: false };
     };
-    let k = krawczyk_image(square, &c, &m);
+    let k = krawczyk_image(&c, &m, &centre());
     if k.iter().any(|x| x.hi() < 0.0 || x.lo() > 1.0) {
         return KrawczykVerdict::NoZero;
     }
@@ -213,17 +247,6 @@ fn rows_contract(m: &[Vec<Interval>]) -> bool {
 
 /// A dense f64 matrix, by rows.
 type Matrix = Vec<Vec<f64>>;
-
-/// `C`, the inverse of the midpoint of the interval Jacobian of the polynomials on their box,
-/// and the interval matrix `I − C J`; `None` if the midpoint is singular.
-fn preconditioned(square: &[Bernstein<Interval>]) -> Option<(Matrix, Vec<Vec<Interval>>)> {
-    let n = square.len();
-    let jac: Vec<Vec<Interval>> = square
-        .iter()
-        .map(|f| (0..n).map(|j| f.deriv_hull(j)).collect())
-        .collect();
-    precondition(&jac)
-}
 
 /// `C`, the inverse of the midpoint of an interval Jacobian `J`, and `I − C J`; `None` if the
 /// midpoint is singular.
@@ -283,44 +306,188 @@ pub(crate) fn krawczyk_in_box(
         .then_some(k)
 }
 
-/// The polynomials restricted to a box given in their current coordinates by f64 bounds
-/// (exact dyadics here), as interval enclosures.
-fn restrict_all(ps: &[Bernstein<Interval>], lo: &[f64], hi: &[f64]) -> Vec<Bernstein<Interval>> {
-    ps.iter().map(|p| p.restrict_box_f64(lo, hi)).collect()
+/// A square system as the subdivision solver sees it: its restriction to a box (`Local`, in
+/// the box's own unit coordinates), how a restriction splits, and the enclosures that
+/// exclusion and Krawczyk's test need. [`solve_system_excluding`] solves dense Bernstein
+/// systems through it ([`Dense`]); [`separable`] systems whose equations separate into two
+/// groups of variables are the other kind.
+pub(crate) trait SquareSystem {
+    /// The system restricted to a box.
+    type Local;
+    /// The system on `[lo, hi]` (global coordinates, exact dyadics in f64), in f64
+    /// intervals from the input converted once.
+    fn on_box(&self, lo: &[f64], hi: &[f64]) -> Self::Local;
+    /// The system on `[lo, hi]` from the exact input at the ladder's tightest level
+    /// ([`Ladder::restricted_enclosures`]), and the level used.
+    fn on_box_tight(
+        &self,
+        ladder: &Ladder,
+        lo: &[Rational],
+        hi: &[Rational],
+    ) -> (Self::Local, Level);
+    /// The restrictions to the `2^k` boxes of a split at the midpoints of `axes` (increasing),
+    /// in the order of [`split_cell`]: the first axis's halves outermost.
+    fn split(&self, local: Self::Local, axes: &[usize]) -> Vec<Self::Local>;
+    /// Whether some equation (or filter) is proven to have no zero on the box.
+    fn excludes(&self, local: &Self::Local) -> bool;
+    /// An enclosure of the Jacobian over the unit box, in the box's coordinates.
+    fn jacobian(&self, local: &Self::Local) -> Vec<Vec<Interval>>;
+    /// Enclosures of the equations' values at the centre of the unit box.
+    fn centre(&self, local: &Self::Local) -> Vec<Interval>;
+    /// The equations' values and Jacobian at a point (global coordinates) in f64: estimates
+    /// for Newton's method, proven by nothing.
+    fn eval_f64(&self, x: &[f64]) -> (Vec<f64>, Vec<Vec<f64>>);
 }
 
-/// Krawczyk's test on the box `[lo, hi]` of the domain (global coordinates), on polynomials
-/// given on the whole domain: the root's enclosure in global coordinates.
-fn test_box(domain_polys: &[Bernstein<Interval>], lo: &[f64], hi: &[f64]) -> Option<Vec<[f64; 2]>> {
-    to_global(&krawczyk(&restrict_all(domain_polys, lo, hi))?, lo, hi)
+/// Krawczyk's test on a restricted system: the root's enclosure in the box's coordinates.
+fn krawczyk_local<S: SquareSystem>(sys: &S, local: &S::Local) -> Option<Vec<Interval>> {
+    krawczyk_unit(&sys.jacobian(local), || sys.centre(local))
 }
 
-/// The exact polynomials of a system, restricted to the small boxes of the refinement from
-/// the exact input at the ladder's tightest level ([`Ladder::restricted_enclosures`]), then
-/// enclosed in f64 intervals for the test. With the default ladder that is exact rationals,
-/// also measured faster than MPFR first: on `occ22470.igs`, whose 766 such tests MPFR at
-/// 106 bits settles every one, the hidden-line drawing takes 9.1 s with MPFR first against
-/// 8.5 s exact (one thread).
-struct Tight<'a> {
-    exact: &'a [Bernstein<Rational>],
+/// A square system in f64 and the partial derivatives of each polynomial.
+type FloatSystem = (Vec<Bernstein<f64>>, Vec<Vec<Bernstein<f64>>>);
+
+/// A dense square system: `n` Bernstein polynomials in `n` variables, and filters.
+pub(crate) struct Dense<'a> {
+    /// The square part, exact.
+    square: &'a [Bernstein<Rational>],
+    /// The square part then the filters, in f64 intervals.
+    whole: Vec<Bernstein<Interval>>,
+    /// The square part in f64 and its partial derivatives, for Newton's method.
+    floats: OnceCell<FloatSystem>,
+}
+
+impl<'a> Dense<'a> {
+    /// The system of `square` with the exclusion-only `filters`.
+    pub(crate) fn new(square: &'a [Bernstein<Rational>], filters: &[Bernstein<Rational>]) -> Self {
+        let whole = square
+            .iter()
+            .chain(filters)
+            .map(|p| p.convert(Precision::F64))
+            .collect();
+        Dense {
+            square,
+            whole,
+            floats: OnceCell::new(),
+        }
+    }
+}
+
+impl SquareSystem for Dense<'_> {
+    type Local = Vec<Bernstein<Interval>>;
+
+    fn on_box(&self, lo: &[f64], hi: &[f64]) -> Self::Local {
+        self.whole
+            .iter()
+            .map(|p| p.restrict_box_f64(lo, hi))
+            .collect()
+    }
+
+    fn on_box_tight(
+        &self,
+        ladder: &Ladder,
+        lo: &[Rational],
+        hi: &[Rational],
+    ) -> (Self::Local, Level) {
+        ladder.restricted_enclosures(self.square, lo, hi)
+    }
+
+    fn split(&self, local: Self::Local, axes: &[usize]) -> Vec<Self::Local> {
+        split_polys(local, axes)
+    }
+
+    fn excludes(&self, local: &Self::Local) -> bool {
+        local.iter().any(excludes)
+    }
+
+    fn jacobian(&self, local: &Self::Local) -> Vec<Vec<Interval>> {
+        dense_jacobian(&local[..self.square.len()])
+    }
+
+    fn centre(&self, local: &Self::Local) -> Vec<Interval> {
+        dense_centre(&local[..self.square.len()])
+    }
+
+    fn eval_f64(&self, x: &[f64]) -> (Vec<f64>, Vec<Vec<f64>>) {
+        let (f, df) = self.floats.get_or_init(|| {
+            let f: Vec<Bernstein<f64>> = self
+                .square
+                .iter()
+                .map(|p| p.convert(Precision::F64))
+                .collect();
+            let df = derivatives(&f);
+            (f, df)
+        });
+        values_and_jacobian(f, df, x)
+    }
+}
+
+/// The partial derivatives of each polynomial: `df[i][j] = ∂f_i/∂x_j`.
+fn derivatives(f: &[Bernstein<f64>]) -> Vec<Vec<Bernstein<f64>>> {
+    f.iter()
+        .map(|p| (0..p.nvars()).map(|j| p.deriv(j)).collect())
+        .collect()
+}
+
+/// The values of `f` and of its Jacobian `df` at `x`, in f64.
+fn values_and_jacobian(
+    f: &[Bernstein<f64>],
+    df: &[Vec<Bernstein<f64>>],
+    x: &[f64],
+) -> (Vec<f64>, Vec<Vec<f64>>) {
+    let fx = f.iter().map(|p| p.eval(x)).collect();
+    let j = df
+        .iter()
+        .map(|r| r.iter().map(|p| p.eval(x)).collect())
+        .collect();
+    (fx, j)
+}
+
+/// Polynomials subdivided at the midpoints of `axes`: `2^k` lists, the first axis's halves
+/// outermost (the order of [`split_cell`]).
+pub(crate) fn split_polys(
+    polys: Vec<Bernstein<Interval>>,
+    axes: &[usize],
+) -> Vec<Vec<Bernstein<Interval>>> {
+    let mut children = vec![polys];
+    for &axis in axes {
+        let mut next = Vec::with_capacity(children.len() * 2);
+        for ps in children {
+            let (pl, pr): (Vec<_>, Vec<_>) = ps.iter().map(|p| p.subdivide_half(axis)).unzip();
+            next.push(pl);
+            next.push(pr);
+        }
+        children = next;
+    }
+    children
+}
+
+/// The exact system restricted to the small boxes of the refinement from the exact input at
+/// the ladder's tightest level ([`Ladder::restricted_enclosures`]), then enclosed in f64
+/// intervals for the test. With the default ladder that is exact rationals, also measured
+/// faster than MPFR first: on `occ22470.igs`, whose 766 such tests MPFR at 106 bits settles
+/// every one, the hidden-line drawing takes 9.1 s with MPFR first against 8.5 s exact (one
+/// thread).
+struct Tight<'a, S> {
+    sys: &'a S,
     ladder: &'a Ladder,
     counts: &'a mut Escalations,
 }
 
-impl Tight<'_> {
-    /// The polynomials on `[lo, hi]` (f64 corners, exact dyadics), if `accept` takes them
-    /// (counted at the level used).
+impl<S: SquareSystem> Tight<'_, S> {
+    /// The system on `[lo, hi]` (f64 corners, exact dyadics), if `accept` takes it (counted
+    /// at the level used).
     fn first<T>(
         &mut self,
         lo: &[f64],
         hi: &[f64],
-        accept: impl FnOnce(&[Bernstein<Interval>]) -> Option<T>,
+        accept: impl FnOnce(&S::Local) -> Option<T>,
     ) -> Option<T> {
         let q = |x: &[f64]| -> Option<Vec<Rational>> {
             x.iter().map(|&v| Rational::from_f64(v)).collect()
         };
         let (lq, hq) = (q(lo)?, q(hi)?);
-        let (local, level) = self.ladder.restricted_enclosures(self.exact, &lq, &hq);
+        let (local, level) = self.sys.on_box_tight(self.ladder, &lq, &hq);
         let t = accept(&local)?;
         self.counts.record(Some(level));
         Some(t)
@@ -328,13 +495,17 @@ impl Tight<'_> {
 
     /// Krawczyk's test on `[lo, hi]`: the root's enclosure in global coordinates.
     fn test_box(&mut self, lo: &[f64], hi: &[f64]) -> Option<Vec<[f64; 2]>> {
-        self.first(lo, hi, |local| to_global(&krawczyk(local)?, lo, hi))
+        let sys = self.sys;
+        self.first(lo, hi, |local| {
+            to_global(&krawczyk_local(sys, local)?, lo, hi)
+        })
     }
 
-    /// Whether some polynomial has a strict sign on the box.
+    /// Whether some equation is proven to have no zero on the box.
     fn excludes(&mut self, b: &[[f64; 2]]) -> bool {
         let (lo, hi): (Vec<f64>, Vec<f64>) = b.iter().map(|x| (x[0], x[1])).unzip();
-        self.first(&lo, &hi, |local| local.iter().any(excludes).then_some(()))
+        let sys = self.sys;
+        self.first(&lo, &hi, |local| sys.excludes(local).then_some(()))
             .is_some()
     }
 }
@@ -358,8 +529,8 @@ fn to_global(k: &[Interval], lo: &[f64], hi: &[f64]) -> Option<Vec<[f64; 2]>> {
 
 /// Narrows an isolated root's enclosure by Krawczyk iteration (each image is again a proven
 /// enclosure of the same root: it lies in the previous box, where the root is unique).
-fn refine(
-    tight: &mut Tight,
+fn refine<S: SquareSystem>(
+    tight: &mut Tight<S>,
     unique_in: &[[f64; 2]],
     enc: Vec<[f64; 2]>,
     width: f64,
@@ -373,18 +544,18 @@ fn refine(
 /// Newton's method in f64 from the enclosure's centre, then Krawczyk's test on small boxes
 /// around the result that lie inside `unique_in`: a success proves the root there, and it is
 /// the same root (the only one in `unique_in`).
-fn newton_then_verify(
-    tight: &mut Tight,
+fn newton_then_verify<S: SquareSystem>(
+    tight: &mut Tight<S>,
     unique_in: &[[f64; 2]],
     enc: &[[f64; 2]],
     width: f64,
 ) -> Option<Vec<[f64; 2]>> {
-    let f: Vec<Bernstein<f64>> = tight
-        .exact
-        .iter()
-        .map(|p| p.convert(Precision::F64))
-        .collect();
-    let x = newton(&f, enc.iter().map(|b| 0.5 * (b[0] + b[1])).collect(), 40)?;
+    let sys = tight.sys;
+    let x = newton_by(
+        |x| sys.eval_f64(x),
+        enc.iter().map(|b| 0.5 * (b[0] + b[1])).collect(),
+        40,
+    )?;
     let mut r = 1e-15;
     while r <= width.max(1e-15) * 0.5 {
         let b: Vec<[f64; 2]> = x
@@ -405,18 +576,21 @@ fn newton_then_verify(
 /// Newton's method in f64 for a square system from `x`, at most `iterations` steps (until a
 /// step is below the rounding of the point): an estimate, proven by nothing (callers verify
 /// it with Krawczyk's test). `None` where the Jacobian is singular or the iterate diverges.
-pub(crate) fn newton(f: &[Bernstein<f64>], mut x: Vec<f64>, iterations: usize) -> Option<Vec<f64>> {
-    let n = f.len();
-    let df: Vec<Vec<Bernstein<f64>>> = f
-        .iter()
-        .map(|p| (0..n).map(|j| p.deriv(j)).collect())
-        .collect();
+pub(crate) fn newton(f: &[Bernstein<f64>], x: Vec<f64>, iterations: usize) -> Option<Vec<f64>> {
+    let df = derivatives(f);
+    newton_by(|x| values_and_jacobian(f, &df, x), x, iterations)
+}
+
+/// Newton's method from `x` with the values and Jacobian that `eval` gives at a point: at
+/// most `iterations` steps, until a step is below the rounding of the point.
+fn newton_by(
+    eval: impl Fn(&[f64]) -> (Vec<f64>, Vec<Vec<f64>>),
+    mut x: Vec<f64>,
+    iterations: usize,
+) -> Option<Vec<f64>> {
+    let n = x.len();
     for _ in 0..iterations {
-        let fx: Vec<f64> = f.iter().map(|p| p.eval(&x)).collect();
-        let j: Vec<Vec<f64>> = df
-            .iter()
-            .map(|r| r.iter().map(|p| p.eval(&x)).collect())
-            .collect();
+        let (fx, j) = eval(&x);
         let inv = inverse(&j)?;
         let step: Vec<f64> = (0..n)
             .map(|i| (0..n).map(|k| inv[i][k] * fx[k]).sum())
@@ -438,7 +612,11 @@ pub(crate) fn newton(f: &[Bernstein<f64>], mut x: Vec<f64>, iterations: usize) -
 }
 
 /// Krawczyk iteration, with bisection where it stalls.
-fn iterate(tight: &mut Tight, mut enc: Vec<[f64; 2]>, width: f64) -> Vec<[f64; 2]> {
+fn iterate<S: SquareSystem>(
+    tight: &mut Tight<S>,
+    mut enc: Vec<[f64; 2]>,
+    width: f64,
+) -> Vec<[f64; 2]> {
     for _ in 0..60 {
         if enc.iter().all(|b| b[1] - b[0] <= width) {
             break;
@@ -572,19 +750,22 @@ pub fn solve_system_excluding(
         square.iter().chain(filters).all(|p| p.nvars() == n),
         "every polynomial has n variables"
     );
+    isolate(&Dense::new(square, filters), domain, exclude, opts)
+}
+
+/// The subdivision solver on any [`SquareSystem`] of `domain.len()` equations: the roots on
+/// `domain` less the boxes of `exclude` (as [`solve_system_excluding`] states).
+pub(crate) fn isolate<S: SquareSystem>(
+    sys: &S,
+    domain: &DyadicBoxN,
+    exclude: &[DyadicBoxN],
+    opts: &SystemOptions,
+) -> SystemRoots {
     let mut out = SystemRoots::default();
-    let whole: Vec<Bernstein<Interval>> =
-        square.iter().map(|p| p.convert(Precision::F64)).collect();
-    let whole_filters: Vec<Bernstein<Interval>> =
-        filters.iter().map(|p| p.convert(Precision::F64)).collect();
     let dlo: Vec<f64> = domain.iter().map(|d| d.0.to_f64()).collect();
     let dhi: Vec<f64> = domain.iter().map(|d| d.1.to_f64()).collect();
-    let start: Vec<Bernstein<Interval>> = restrict_all(&whole, &dlo, &dhi)
-        .into_iter()
-        .chain(restrict_all(&whole_filters, &dlo, &dhi))
-        .collect();
-    let mut stack: Vec<(DyadicBoxN, u32, Vec<Bernstein<Interval>>)> =
-        vec![(domain.clone(), 0, start)];
+    let mut stack: Vec<(DyadicBoxN, u32, S::Local)> =
+        vec![(domain.clone(), 0, sys.on_box(&dlo, &dhi))];
     let excluded_f64: Vec<Vec<[f64; 2]>> = exclude
         .iter()
         .map(|b| b.iter().map(|d| [d.0.to_f64(), d.1.to_f64()]).collect())
@@ -594,9 +775,10 @@ pub fn solve_system_excluding(
             .iter()
             .any(|e| e.iter().zip(b).all(|(x, y)| x.0 <= y.0 && y.1 <= x.1))
     };
-    while let Some((bx, depth, polys)) = stack.pop() {
+    let n = domain.len();
+    while let Some((bx, depth, local)) = stack.pop() {
         out.boxes += 1;
-        if in_excluded(&bx) || polys.iter().any(excludes) {
+        if in_excluded(&bx) || sys.excludes(&local) {
             continue;
         }
         let lo: Vec<f64> = bx.iter().map(|d| d.0.to_f64()).collect();
@@ -607,11 +789,13 @@ pub fn solve_system_excluding(
         // Krawczyk's operator on the box itself, from the polynomials already on it: a zero
         // proven unique in the box, none in it, or, where the rows contract, the test on the
         // grown box (a zero near the box's side is proven by one of the boxes around it).
-        let tested = match krawczyk_verdict(&polys[..n]) {
+        let tested = match verdict_of(&sys.jacobian(&local), || sys.centre(&local)) {
             KrawczykVerdict::NoZero => continue,
             KrawczykVerdict::Unique(k) => to_global(&k, &lo, &hi).map(|enc| (enc, &lo, &hi)),
             KrawczykVerdict::Unknown { worth: true } => {
-                test_box(&whole, &glo, &ghi).map(|enc| (enc, &glo, &ghi))
+                krawczyk_local(sys, &sys.on_box(&glo, &ghi))
+                    .and_then(|k| to_global(&k, &glo, &ghi))
+                    .map(|enc| (enc, &glo, &ghi))
             }
             KrawczykVerdict::Unknown { worth: false } => None,
         };
@@ -635,7 +819,7 @@ pub fn solve_system_excluding(
                 let trivial = excluded_f64.iter().any(|e| within(&clipped, e));
                 if !seen && !trivial {
                     let mut tight = Tight {
-                        exact: square,
+                        sys,
                         ladder: &opts.ladder,
                         counts: &mut out.escalations,
                     };
@@ -671,12 +855,13 @@ pub fn solve_system_excluding(
         // up, so a domain with one very narrow variable costs no more than one without it.
         let widest = lo.iter().zip(&hi).map(|(a, b)| b - a).fold(0.0, f64::max);
         let axes: Vec<usize> = (0..n).filter(|&a| hi[a] - lo[a] >= widest / 2.0).collect();
-        let Some(children) = split_box(&bx, polys, &axes) else {
+        let Some(cells) = split_cell(&bx, &axes) else {
             out.unresolved
                 .push(lo.iter().zip(&hi).map(|(a, b)| [*a, *b]).collect());
             continue;
         };
-        for (b, ps) in children.into_iter().rev() {
+        let locals = sys.split(local, &axes);
+        for (b, ps) in cells.into_iter().zip(locals).rev() {
             stack.push((b, depth + 1, ps));
         }
     }
@@ -690,17 +875,23 @@ pub(crate) fn split_box(
     polys: Vec<Bernstein<Interval>>,
     axes: &[usize],
 ) -> Option<Vec<(DyadicBoxN, Vec<Bernstein<Interval>>)>> {
-    let mut children = vec![(bx.clone(), polys)];
+    let cells = split_cell(bx, axes)?;
+    Some(cells.into_iter().zip(split_polys(polys, axes)).collect())
+}
+
+/// A box split at the midpoints of the given axes: `2^k` boxes, the first axis's halves
+/// outermost; `None` if a side is at the dyadic limit.
+pub(crate) fn split_cell(bx: &DyadicBoxN, axes: &[usize]) -> Option<Vec<DyadicBoxN>> {
+    let mut children = vec![bx.clone()];
     for &axis in axes {
         let mut next = Vec::with_capacity(children.len() * 2);
-        for (b, ps) in children {
+        for b in children {
             let mid = b[axis].0.midpoint(b[axis].1)?;
             let (mut l, mut r) = (b.clone(), b);
             l[axis].1 = mid;
             r[axis].0 = mid;
-            let (pl, pr): (Vec<_>, Vec<_>) = ps.iter().map(|p| p.subdivide_half(axis)).unzip();
-            next.push((l, pl));
-            next.push((r, pr));
+            next.push(l);
+            next.push(r);
         }
         children = next;
     }
