@@ -511,14 +511,6 @@ pub fn fix_axis(p: &Poly, axis: usize, at: &Rational) -> Poly {
     Bernstein::new(&[deg], coeffs).expect("a line of a patch")
 }
 
-/// A polynomial in `k` variables as one in `total` variables, its variables placed from
-/// `offset` on (degree 0 in the others; the coefficients are unchanged).
-pub fn lift(p: &Poly, total: usize, offset: usize) -> Poly {
-    let mut degrees = vec![0; total];
-    degrees[offset..offset + p.nvars()].copy_from_slice(p.degrees());
-    Bernstein::new(&degrees, p.coeffs().to_vec()).expect("lifting keeps the coefficient count")
-}
-
 /// The (u, v) of a side's parameter `t`.
 pub fn side_point(edge: Edge, t: &Rational) -> [Rational; 2] {
     let (zero, one) = (Rational::new(), Rational::from(1));

@@ -21,7 +21,7 @@ mod power;
 mod reduce;
 mod subdivide;
 
-pub use poly::{Bernstein, BernsteinError, MAX_VARS};
+pub use poly::{lift, Bernstein, BernsteinError, MAX_VARS};
 pub use power::antisymmetric_quotient;
 
 /// An exact polynomial in Bernstein form: the input every analysis derives its polynomials from

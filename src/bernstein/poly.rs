@@ -177,3 +177,15 @@ impl Bernstein<Rational> {
         self.map(|q| M::from_rational(q, prec))
     }
 }
+
+/// A polynomial in `k` variables as one in `total` variables, its variables placed from
+/// `offset` on (degree 0 in the others; the coefficients are unchanged, since a Bernstein
+/// basis of degree 0 is the constant 1).
+///
+/// # Panics
+/// If the variables do not fit: `offset + p.nvars() > total` or `total > MAX_VARS`.
+pub fn lift<N: Number>(p: &Bernstein<N>, total: usize, offset: usize) -> Bernstein<N> {
+    let mut degrees = vec![0; total];
+    degrees[offset..offset + p.nvars()].copy_from_slice(p.degrees());
+    Bernstein::new(&degrees, p.coeffs().to_vec()).expect("lifting keeps the coefficient count")
+}

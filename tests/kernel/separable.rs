@@ -2,7 +2,6 @@
 //! against the dense solver on the same equations multiplied out, and against closed forms:
 //! every root found by one is found by the other, and every enclosure holds the true root.
 
-use limn::analysis::projection::lift;
 use limn::bernstein::{Bernstein, Poly};
 use limn::number::Rational;
 use limn::solver::system::separable::{solve_separable, Equation, Group, SeparableSystem};
@@ -16,24 +15,6 @@ fn poly(degrees: &[usize], c: &[i64]) -> Poly {
 
 fn unit(n: usize) -> Vec<(Dyadic, Dyadic)> {
     vec![(Dyadic::ZERO, Dyadic::ONE); n]
-}
-
-/// The dense form of a separable system: every ratio equation multiplied out in the joint
-/// variables.
-fn dense(system: &SeparableSystem) -> Vec<Poly> {
-    let n0 = system.groups[0].domain.len();
-    let n = n0 + system.groups[1].domain.len();
-    let l = |g: usize, k: usize| lift(system.groups[g].polys[k], n, if g == 0 { 0 } else { n0 });
-    system
-        .equations
-        .iter()
-        .map(|e| match *e {
-            Equation::Zero { group, poly } => l(group, poly),
-            Equation::Ratio { first, second } => {
-                &(&l(0, first[0]) * &l(1, second[1])) - &(&l(1, second[0]) * &l(0, first[1]))
-            }
-        })
-        .collect()
 }
 
 fn overlaps(a: &[[f64; 2]], b: &[[f64; 2]]) -> bool {
@@ -126,7 +107,7 @@ fn a_circle_in_a_patch_crosses_a_segment_where_the_closed_form_says() {
     }
     agree(
         &r,
-        &solve_system(&dense(&system), &[], &unit(3), &SystemOptions::default()),
+        &solve_system(&system.dense().0, &[], &unit(3), &SystemOptions::default()),
     );
 }
 
@@ -168,7 +149,7 @@ fn a_curve_through_a_surface_is_found_once() {
         .all(|e| e[0] <= 0.5 && 0.5 <= e[1]));
     agree(
         &r,
-        &solve_system(&dense(&system), &[], &unit(3), &SystemOptions::default()),
+        &solve_system(&system.dense().0, &[], &unit(3), &SystemOptions::default()),
     );
 }
 
@@ -204,7 +185,7 @@ proptest! {
         };
         let opts = SystemOptions::default();
         let sep = solve_separable(&system, &[], &opts);
-        let den = solve_system(&dense(&system), &[], &unit(2), &opts);
+        let den = solve_system(&system.dense().0, &[], &unit(2), &opts);
         agree(&sep, &den);
     }
 }

@@ -19,7 +19,7 @@
 
 use crate::analysis::chords::plane_curve::{div, range_enclosing, restrict_enclosing};
 use crate::analysis::chords::space_curve::deflate_common;
-use crate::analysis::projection::lift;
+use crate::bernstein::lift;
 use crate::bernstein::Bernstein;
 use crate::geometry::Rect;
 use crate::number::margin;

@@ -15,7 +15,7 @@ use crate::analysis::frame::Frame;
 use crate::analysis::chords::sphere_curve::{largest, piece_error};
 use crate::analysis::contour::parabolic::parabolic_function;
 use crate::analysis::flecnodal::system::{flecnodal_system, Chart};
-use crate::analysis::projection::lift;
+use crate::bernstein::lift;
 use crate::error::Error;
 use crate::model::Model;
 use crate::number::{Interval, Number, Rational};

@@ -20,7 +20,7 @@
 //! `σ = 2s − 1 ∈ [−1, 1]`: every direction up to sign appears (the `(a, b) ~ (−a, −b)` duplicate
 //! is gone by construction; `(1, ±1)` appear in both charts), and `(u, v, s)` is a box.
 
-use crate::analysis::projection::lift;
+use crate::bernstein::lift;
 use crate::number::Rational;
 use crate::surface::normal::cross;
 use crate::surface::RationalPatch;

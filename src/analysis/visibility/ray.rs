@@ -24,16 +24,17 @@
 //! ([`crate::solver::system::solve_system_excluding`]).
 
 pub use crate::analysis::projection::fix_axis;
-use crate::analysis::projection::{lift, side_point, ImagePolys};
+use crate::analysis::projection::{side_point, ImagePolys};
 use crate::analysis::visibility::scene::{ratio_bounds, ImageBounds, Scene};
 use crate::analysis::visibility::sheets::{fold_box, fold_box_around, injective_box, range_on};
+use crate::bernstein::lift;
 use crate::bernstein::Bernstein;
 use crate::bernstein::Poly;
 use crate::geometry::Rect;
 use crate::number::{Interval, Number, Precision, Rational};
 use crate::reason::Reason;
 use crate::solver::dyadic::Dyadic;
-use crate::solver::system::{solve_system_excluding, DyadicBoxN, SystemOptions};
+use crate::solver::system::{solve_system_excluding, DyadicBoxN, SystemOptions, SystemRoots};
 use crate::surface::Edge;
 
 /// A point whose QI is wanted.
@@ -290,7 +291,7 @@ pub fn layers(
                 }
             }
         }
-        let (front, back) = hits_on_ray(scene, &ps, j, &exclude, opts)?;
+        let (front, back) = hits_on_ray(scene, &ps, j, &exclude, opts, behind)?;
         count += front;
         if let Ok(all) = &mut hits {
             match back {
@@ -349,6 +350,7 @@ fn hits_on_ray(
     j: usize,
     exclude: &[DyadicBoxN],
     opts: &RayOptions,
+    want_behind: bool,
 ) -> Result<(usize, Result<Vec<Hit>, Reason>), Reason> {
     let n = ps.nvars + 2;
     let pim = &ps.image;
@@ -367,18 +369,51 @@ fn hits_on_ray(
     let mut square = vec![eq_x, eq_y];
     square.extend(ps.constraints.iter().map(|c| lift(c, n, 0)));
     let front_i: Bernstein<Interval> = front.convert(Precision::F64);
-    let mut count = 0;
-    let mut behind: Result<Vec<Hit>, Reason> = Ok(Vec::new());
     let mut domain = ps.domain.clone();
     domain.extend([(Dyadic::ZERO, Dyadic::ONE), (Dyadic::ZERO, Dyadic::ONE)]);
     let exclude: Vec<DyadicBoxN> = exclude
         .iter()
         .map(|b| ps.domain.iter().chain(b).copied().collect())
         .collect();
+    let decide = |r: &SystemRoots| ray_hits(r, ps, j, jim, &front_i, &exclude);
+    // Lazily refined: the roots are first refined only to a coarse width; if every decision
+    // below holds on those enclosures it is proven (each enclosure holds its root), and only
+    // otherwise is the system solved again with the roots refined to the full width. The
+    // points behind, when asked, keep the full width (their depths are compared).
+    if !want_behind {
+        let coarse = SystemOptions {
+            refine_width: COARSE_WIDTH.max(opts.system.refine_width),
+            ..opts.system.clone()
+        };
+        let r = solve_system_excluding(&square, &[], &domain, &exclude, &coarse);
+        if r.unresolved.is_empty() {
+            if let Ok(decided) = decide(&r) {
+                return Ok(decided);
+            }
+        }
+    }
     let r = solve_system_excluding(&square, &[], &domain, &exclude, &opts.system);
+    decide(&r)
+}
+
+/// The width to which a ray test first refines its roots ([`hits_on_ray`]).
+const COARSE_WIDTH: f64 = 1e-6;
+
+/// What the roots of a point's ray on patch `j` say: how many hits lie in front of the point,
+/// and those behind it (or why they are not proven); an error where a root is not decided.
+fn ray_hits(
+    r: &SystemRoots,
+    ps: &PointSystem,
+    j: usize,
+    jim: &ImagePolys,
+    front_i: &Bernstein<Interval>,
+    exclude: &[DyadicBoxN],
+) -> Result<(usize, Result<Vec<Hit>, Reason>), Reason> {
     if !r.unresolved.is_empty() {
         return Err(Reason::RayIntersections { patch: j });
     }
+    let mut count = 0;
+    let mut behind: Result<Vec<Hit>, Reason> = Ok(Vec::new());
     for root in &r.roots {
         let inside_domain = root.inside;
         let near_excluded = exclude.iter().any(|e| {

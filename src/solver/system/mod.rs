@@ -535,6 +535,9 @@ fn refine<S: SquareSystem>(
     enc: Vec<[f64; 2]>,
     width: f64,
 ) -> Vec<[f64; 2]> {
+    if enc.iter().all(|b| b[1] - b[0] <= width) {
+        return enc;
+    }
     if let Some(t) = newton_then_verify(tight, unique_in, &enc, width) {
         return t;
     }
@@ -676,6 +679,11 @@ pub(crate) fn within(inner: &[[f64; 2]], outer: &[[f64; 2]]) -> bool {
         .iter()
         .zip(outer)
         .all(|(a, b)| b[0] <= a[0] && a[1] <= b[1])
+}
+
+/// Whether two closed boxes share a point.
+pub(crate) fn meets(a: &[[f64; 2]], b: &[[f64; 2]]) -> bool {
+    a.iter().zip(b).all(|(x, y)| x[0] <= y[1] && y[0] <= x[1])
 }
 
 /// Whether two closed boxes share interior points.
@@ -830,6 +838,19 @@ pub(crate) fn isolate<S: SquareSystem>(
                         .enumerate()
                         .any(|(i, e)| e[1] < dlo[i] || e[0] > dhi[i])
                     {
+                        continue;
+                    }
+                    // Refined, the same zero found from another box is recognised as above;
+                    // an enclosure that still meets a known one may hold that zero or
+                    // another: the region is not decided (proofs/krawczyk.md, each once).
+                    let known = |r: &IsolatedRoot| {
+                        within(&enc, &r.unique_in) || within(&r.enclosure, &unique_in)
+                    };
+                    if out.roots.iter().any(known) {
+                        continue;
+                    }
+                    if out.roots.iter().any(|r| meets(&enc, &r.enclosure)) {
+                        out.unresolved.push(unique_in);
                         continue;
                     }
                     let inside = enc

@@ -13,9 +13,13 @@
 //! a ratio equation compares the ranges of the two ratios, which is as strong as the sign test
 //! on the product polynomial's coefficients (`proofs/separable-systems.md`).
 
-use super::{excludes, isolate, split_polys, DyadicBoxN, SquareSystem, SystemOptions, SystemRoots};
-use crate::bernstein::{Bernstein, Poly};
+use super::{
+    excludes, isolate, meets, split_polys, within, DyadicBoxN, SquareSystem, SystemOptions,
+    SystemRoots,
+};
+use crate::bernstein::{lift, Bernstein, Poly};
 use crate::number::{Interval, Number, Precision, Rational};
+use crate::solver::dyadic::Dyadic;
 use crate::solver::precision::{Ladder, Level};
 use std::cell::OnceCell;
 use std::rc::Rc;
@@ -103,7 +107,122 @@ pub fn solve_separable(
         .iter()
         .flat_map(|g| g.domain.iter().copied())
         .collect();
-    isolate(&solver, &domain, exclude, opts)
+    let separable = isolate(&solver, &domain, exclude, opts);
+    if separable.unresolved.is_empty() || separable.unresolved.len() > DENSE_AT_MOST {
+        return separable;
+    }
+    settle_densely(system, separable, &domain, exclude, opts)
+}
+
+/// The subdivision below an unresolved box of the separable solve that the dense solver may
+/// take: its depth and boxes; and the most unresolved boxes a separable solve may leave for
+/// the dense solver to try (more are a budget spent on a multiple root or a cluster, which
+/// the dense solver would not settle either).
+const DENSE_DEPTH: u32 = 2;
+const DENSE_BOXES: usize = 64;
+const DENSE_AT_MOST: usize = 8;
+
+/// Each box the separable solve left unresolved, solved again by the dense solver on the
+/// multiplied-out equations ([`SeparableSystem::dense`]) with a small budget: the centre
+/// values and Jacobian of one product polynomial can be tighter than the products of the
+/// groups' separate enclosures (the patch's coordinates large against the box, say), and
+/// Krawczyk's test then succeed where it failed. Both solves are certified; a root found in a
+/// box is merged as the solver merges roots found from two boxes (`proofs/krawczyk.md`, each
+/// once), and a box the dense solve does not settle stays unresolved. Tried only where the
+/// separable solve left at most [`DENSE_AT_MOST`] boxes.
+fn settle_densely(
+    system: &SeparableSystem,
+    separable: SystemRoots,
+    domain: &DyadicBoxN,
+    exclude: &[DyadicBoxN],
+    opts: &SystemOptions,
+) -> SystemRoots {
+    let (equations, _) = system.dense();
+    let dense_opts = SystemOptions {
+        max_depth: DENSE_DEPTH,
+        max_boxes: DENSE_BOXES,
+        ..opts.clone()
+    };
+    let dlo: Vec<f64> = domain.iter().map(|d| d.0.to_f64()).collect();
+    let dhi: Vec<f64> = domain.iter().map(|d| d.1.to_f64()).collect();
+    let mut out = SystemRoots {
+        unresolved: Vec::new(),
+        ..separable.clone()
+    };
+    for u in &separable.unresolved {
+        // The box's corners are dyadic (the subdivision's), exact in f64.
+        let Some(bx) = u
+            .iter()
+            .map(|e| Some((dyadic_of(e[0])?, dyadic_of(e[1])?)))
+            .collect::<Option<DyadicBoxN>>()
+        else {
+            out.unresolved.push(u.clone());
+            continue;
+        };
+        let r = super::solve_system_excluding(&equations, &[], &bx, exclude, &dense_opts);
+        out.boxes += r.boxes;
+        out.escalations.merge(&r.escalations);
+        if !r.unresolved.is_empty() {
+            // Not settled: the box stays unresolved as the separable solve left it.
+            out.unresolved.push(u.clone());
+            continue;
+        }
+        for mut root in r.roots {
+            if out.roots.iter().any(|k| {
+                within(&root.enclosure, &k.unique_in) || within(&k.enclosure, &root.unique_in)
+            }) {
+                continue;
+            }
+            if out
+                .roots
+                .iter()
+                .any(|k| meets(&root.enclosure, &k.enclosure))
+            {
+                out.unresolved.push(root.unique_in);
+                continue;
+            }
+            // `inside` was judged against the box; judged again against the domain.
+            root.inside = root
+                .enclosure
+                .iter()
+                .enumerate()
+                .all(|(i, e)| dlo[i] <= e[0] && e[1] <= dhi[i]);
+            out.roots.push(root);
+        }
+    }
+    out
+}
+
+/// A dyadic in `[0, 1]` given as an f64, if it is one.
+fn dyadic_of(x: f64) -> Option<Dyadic> {
+    Dyadic::from_rational(&Rational::from_f64(x)?)
+}
+
+impl SeparableSystem<'_> {
+    /// The system multiplied out in the joint variables (group 0's, then group 1's): a ratio
+    /// equation `n_0 / d_0 = n_1 / d_1` as `n_0 d_1 − n_1 d_0`, a group's polynomial lifted
+    /// (degree 0 in the other group), in the order of the equations; and the joint box.
+    pub fn dense(&self) -> (Vec<Poly>, DyadicBoxN) {
+        let n0 = self.groups[0].domain.len();
+        let n = n0 + self.groups[1].domain.len();
+        let l = |g: usize, k: usize| lift(self.groups[g].polys[k], n, if g == 0 { 0 } else { n0 });
+        let equations = self
+            .equations
+            .iter()
+            .map(|e| match *e {
+                Equation::Zero { group, poly } => l(group, poly),
+                Equation::Ratio { first, second } => {
+                    &(&l(0, first[0]) * &l(1, second[1])) - &(&l(1, second[0]) * &l(0, first[1]))
+                }
+            })
+            .collect();
+        let domain = self
+            .groups
+            .iter()
+            .flat_map(|g| g.domain.iter().copied())
+            .collect();
+        (equations, domain)
+    }
 }
 
 /// A group's polynomials on a box of its variables (in the box's unit coordinates), with what
@@ -160,6 +279,100 @@ fn ratio_range(n: &Bernstein<Interval>, d: &Bernstein<Interval>) -> Option<Inter
         range = Some(range.map_or(r, |a| a.hull(&r)));
     }
     range
+}
+
+/// An enclosure of `∂_j n_0 · d_1 − n_1 · ∂_j d_0` on the box, `[n_0, d_0]` of the
+/// differentiated group and `[n_1, d_1]` of the other, each restricted to its part of the box.
+/// Where `n_0`, `d_0` share their degrees and so do `n_1`, `d_1`, the product of a polynomial
+/// in one group's variables with one in the other's is a tensor-product Bernstein polynomial
+/// whose coefficients are the products of theirs: the expression's coefficients are
+/// `a_i p_k − c_i q_k` (`a`, `c` those of the partials, `p`, `q` of `d_1`, `n_1`), and their
+/// hull is the dense solver's hull of the same partial, without forming the product
+/// (`proofs/separable-systems.md`, section 2). Otherwise the product of the factors' hulls.
+fn ratio_partial(
+    mine: [&Bernstein<Interval>; 2],
+    theirs: [&Bernstein<Interval>; 2],
+    theirs_hulls: [&Interval; 2],
+    j: usize,
+) -> Interval {
+    let [n0, d0] = mine;
+    let [n1, d1] = theirs;
+    if n0.degrees() != d0.degrees() || n1.degrees() != d1.degrees() {
+        return n0
+            .deriv_hull(j)
+            .mul(theirs_hulls[1])
+            .sub(&theirs_hulls[0].mul(&d0.deriv_hull(j)));
+    }
+    let (a, c) = (n0.deriv(j), d0.deriv(j));
+    let (a, c, p, q) = (a.coeffs(), c.coeffs(), d1.coeffs(), n1.coeffs());
+    tensor_hull_f64(a, c, p, q).unwrap_or_else(|| {
+        let mut hull: Option<Interval> = None;
+        for (ai, ci) in a.iter().zip(c) {
+            for (pk, qk) in p.iter().zip(q) {
+                let v = ai.mul(pk).sub(&ci.mul(qk));
+                hull = Some(hull.map_or(v, |h| h.hull(&v)));
+            }
+        }
+        hull.expect("a polynomial has a coefficient")
+    })
+}
+
+/// An enclosure of every `a_i p_k − c_i q_k` (`a_i` in the interval `a[i]`, and so on),
+/// evaluated in plain f64 at the intervals' midpoints, widened by one bound on every term's
+/// distance from its f64 value (the radii and the rounding: `proofs/separable-systems.md`,
+/// section 2); `None` where a bound or a value is not finite (the caller then uses interval
+/// arithmetic).
+fn tensor_hull_f64(
+    a: &[Interval],
+    c: &[Interval],
+    p: &[Interval],
+    q: &[Interval],
+) -> Option<Interval> {
+    const U: f64 = f64::EPSILON / 2.0;
+    // Finite inputs, so that no midpoint or radius is a NaN (which `min` and `max` skip).
+    let finite = |x: &[Interval]| x.iter().all(|v| v.lo().is_finite() && v.hi().is_finite());
+    if !(finite(a) && finite(c) && finite(p) && finite(q)) {
+        return None;
+    }
+    // Midpoints, and the largest |midpoint| and radius (rounded up) of each list.
+    let split = |x: &[Interval], mids: &mut Vec<f64>| -> (f64, f64) {
+        let (mut big, mut rad) = (0.0f64, 0.0f64);
+        for v in x {
+            let m = 0.5 * v.lo() + 0.5 * v.hi();
+            let r = (v.hi() - m).max(m - v.lo()).next_up();
+            mids.push(m);
+            big = big.max(m.abs());
+            rad = rad.max(r);
+        }
+        (big, rad)
+    };
+    let (mut am, mut cm, mut pm, mut qm) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    let (ba, ra) = split(a, &mut am);
+    let (bc, rc) = split(c, &mut cm);
+    let (bp, rp) = split(p, &mut pm);
+    let (bq, rq) = split(q, &mut qm);
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for (&ai, &ci) in am.iter().zip(&cm) {
+        for (&pk, &qk) in pm.iter().zip(&qm) {
+            let v = ai * pk - ci * qk;
+            lo = lo.min(v);
+            hi = hi.max(v);
+        }
+    }
+    // |a p − ã p̃| ≤ r_a (|p̃| + r_p) + |ã| r_p, the same for c q, plus the rounding of the
+    // two products and their difference (3u of the products' sizes) and of underflow; the
+    // bound's own dozen roundings are covered by the factor 1 + 2^-40.
+    let e = (ra * (bp + rp)
+        + ba * rp
+        + rc * (bq + rq)
+        + bc * rq
+        + 3.0 * U * (ba * bp + bc * bq)
+        + 1e-300)
+        * (1.0 + 2f64.powi(-40));
+    // With `e` finite every product is finite (|ã p̃| ≤ |ã|max |p̃|max, rounding is
+    // monotonic); a difference may overflow to an infinity, never to a NaN.
+    let (lo, hi) = ((lo - e).next_down(), (hi + e).next_up());
+    (lo.is_finite() && hi.is_finite() && e.is_finite()).then(|| Interval::new(lo, hi))
 }
 
 /// A separable system ready for the subdivision solver.
@@ -352,11 +565,12 @@ impl SquareSystem for Solver<'_, '_> {
                                 } else {
                                     (second, first, &local[0])
                                 };
-                                let dn = part.polys[mine[0]].deriv_hull(j);
-                                let dd = part.polys[mine[1]].deriv_hull(j);
-                                let d = dn
-                                    .mul(&other.hulls[theirs[1]])
-                                    .sub(&other.hulls[theirs[0]].mul(&dd));
+                                let d = ratio_partial(
+                                    [&part.polys[mine[0]], &part.polys[mine[1]]],
+                                    [&other.polys[theirs[0]], &other.polys[theirs[1]]],
+                                    [&other.hulls[theirs[0]], &other.hulls[theirs[1]]],
+                                    j,
+                                );
                                 if g == 0 {
                                     d
                                 } else {
@@ -452,5 +666,59 @@ impl SquareSystem for Solver<'_, '_> {
             jac.push(row);
         }
         (values, jac)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn exact(x: f64) -> Rational {
+        Rational::from_f64(x).expect("finite")
+    }
+
+    /// An interval of any sign and magnitude, possibly a point.
+    fn interval() -> impl Strategy<Value = Interval> {
+        (-1.0e3f64..1.0e3, -30i32..30, 0.0f64..1.0, prop::bool::ANY).prop_map(|(m, e, w, point)| {
+            let c = m * 2f64.powi(e);
+            let r = if point { 0.0 } else { w * c.abs() * 1e-3 };
+            Interval::new(c - r, c + r)
+        })
+    }
+
+    proptest! {
+        /// Every `a_i p_k − c_i q_k` with its factors anywhere in their intervals (the
+        /// corners, where the extremes of a bilinear form lie) is in the f64 hull, computed
+        /// exactly in rationals.
+        #[test]
+        fn the_f64_tensor_hull_encloses_every_exact_term(
+            a in prop::collection::vec(interval(), 1..5),
+            c in prop::collection::vec(interval(), 5),
+            p in prop::collection::vec(interval(), 1..5),
+            q in prop::collection::vec(interval(), 5),
+        ) {
+            let (c, q) = (&c[..a.len()], &q[..p.len()]);
+            let h = tensor_hull_f64(&a, c, &p, q).expect("finite inputs");
+            let (lo, hi) = (exact(h.lo()), exact(h.hi()));
+            for (ai, ci) in a.iter().zip(c) {
+                for (pk, qk) in p.iter().zip(q) {
+                    for bits in 0..16 {
+                        let pick = |x: &Interval, b: usize| exact(if bits >> b & 1 == 0 { x.lo() } else { x.hi() });
+                        let v = pick(ai, 0) * pick(pk, 1) - pick(ci, 2) * pick(qk, 3);
+                        prop_assert!(lo <= v && v <= hi, "{v} outside [{lo}, {hi}]");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn an_infinite_bound_is_left_to_interval_arithmetic() {
+        let inf = Interval::new(f64::NEG_INFINITY, 1.0);
+        let one = [Interval::point(1.0)];
+        assert!(tensor_hull_f64(&[inf], &one, &one, &one).is_none());
+        let huge = [Interval::point(1e300)];
+        assert!(tensor_hull_f64(&huge, &one, &huge, &one).is_none());
     }
 }

@@ -21,7 +21,8 @@ use crate::analysis::visibility::hlr::HlrOptions;
 use crate::analysis::visibility::scene::Scene;
 use crate::reason::Reason;
 use crate::solver::dyadic::Dyadic;
-use crate::solver::system::{solve_system_excluding, DyadicBoxN, SystemRoots};
+use crate::solver::system::separable::solve_separable;
+use crate::solver::system::{solve_system, DyadicBoxN, SystemRoots};
 use rayon::prelude::*;
 use std::collections::BTreeSet;
 
@@ -150,9 +151,10 @@ pub(super) fn crossings(
                 };
                 return (*job, r, Vec::new(), true);
             }
-            let (eqs, domain, exclude) = match *job {
+            let opts = &opts.crossing;
+            let (r, exclude) = match *job {
                 Job::Pair(a, b) => {
-                    let (eqs, domain) = crossing_system(&segments[a], &segments[b]);
+                    let system = crossing_system(&segments[a], &segments[b]);
                     let mut exclude = arc_fold_exclusion(&segments[a], &segments[b], &covers, a, b);
                     for va in &segments[a].vertices {
                         for vb in &segments[b].vertices {
@@ -165,18 +167,18 @@ pub(super) fn crossings(
                             }
                         }
                     }
-                    (eqs, domain, exclude)
+                    (solve_separable(&system, &exclude, opts), exclude)
                 }
                 Job::SelfCrossing(a) => {
                     let (eqs, domain) = self_crossing_system(&segments[a]);
-                    (eqs, domain, Vec::new())
+                    (solve_system(&eqs, &[], &domain, opts), Vec::new())
                 }
                 Job::Penetration(a, j) => {
-                    let (eqs, domain) = penetration_system(&segments[a], &scene.images[j]);
-                    (eqs, domain, Vec::new())
+                    let unit = vec![(Dyadic::ZERO, Dyadic::ONE); 2];
+                    let system = penetration_system(&segments[a], &scene.images[j], &unit);
+                    (solve_separable(&system, &[], opts), Vec::new())
                 }
             };
-            let r = solve_system_excluding(&eqs, &[], &domain, &exclude, &opts.crossing);
             (*job, r, exclude, false)
         })
         .collect();

@@ -1,13 +1,12 @@
 //! The polynomial systems of a hidden-line drawing: image crossings of two segments, a side
 //! crossing itself, a segment passing through a patch.
 
-use crate::analysis::projection::{lift, ImagePolys};
+use crate::analysis::projection::ImagePolys;
 use crate::analysis::visibility::hlr::lines::Segment;
 use crate::bernstein::antisymmetric_quotient;
-use crate::solver::dyadic::Dyadic;
-use crate::solver::system::DyadicBoxN;
-
 use crate::bernstein::Poly;
+use crate::solver::system::separable::{Equation, Group, SeparableSystem};
+use crate::solver::system::DyadicBoxN;
 
 /// The self-crossings of a side's image: both coincidence equations divided by `t − s`.
 pub(super) fn self_crossing_system(s: &Segment) -> (Vec<Poly>, DyadicBoxN) {
@@ -21,41 +20,76 @@ pub(super) fn self_crossing_system(s: &Segment) -> (Vec<Poly>, DyadicBoxN) {
     (eqs, domain)
 }
 
-/// The crossing system of two segments: image coincidence and their constraints, in the
-/// variables of `a` then of `b`.
-pub(super) fn crossing_system(a: &Segment, b: &Segment) -> (Vec<Poly>, DyadicBoxN) {
-    let (na, nb) = (a.domain.len(), b.domain.len());
-    let n = na + nb;
-    let la = |p: &Poly| lift(p, n, 0);
-    let lb = |p: &Poly| lift(p, n, na);
-    let coincide =
-        |fa: &Poly, fb: &Poly| &(&la(fa) * &lb(&b.image.q)) - &(&lb(fb) * &la(&a.image.q));
-    let mut eqs = vec![
-        coincide(&a.image.x, &b.image.x),
-        coincide(&a.image.y, &b.image.y),
+/// The crossing system of two segments, separable: image coincidence (`x_a / q_a = x_b / q_b`,
+/// the same for `y`) and their constraints, in the variables of `a` then of `b`.
+pub(super) fn crossing_system<'a>(a: &'a Segment, b: &'a Segment) -> SeparableSystem<'a> {
+    let group = |s: &'a Segment| Group {
+        polys: [&s.image.x, &s.image.y, &s.image.q]
+            .into_iter()
+            .chain(s.constraint.as_ref())
+            .collect(),
+        domain: &s.domain,
+    };
+    let mut equations = vec![
+        Equation::Ratio {
+            first: [0, 2],
+            second: [0, 2],
+        },
+        Equation::Ratio {
+            first: [1, 2],
+            second: [1, 2],
+        },
     ];
-    eqs.extend(a.constraint.iter().map(la));
-    eqs.extend(b.constraint.iter().map(lb));
-    let mut domain = a.domain.clone();
-    domain.extend(b.domain.iter().copied());
-    (eqs, domain)
+    for (g, s) in [a, b].into_iter().enumerate() {
+        if s.constraint.is_some() {
+            equations.push(Equation::Zero { group: g, poly: 3 });
+        }
+    }
+    SeparableSystem {
+        groups: [group(a), group(b)],
+        equations,
+    }
 }
 
-/// The penetration system of a segment and a patch: the same point in space.
-pub(super) fn penetration_system(a: &Segment, j: &ImagePolys) -> (Vec<Poly>, DyadicBoxN) {
-    let na = a.domain.len();
-    let n = na + 2;
-    let la = |p: &Poly| lift(p, n, 0);
-    let lj = |p: &Poly| lift(p, n, na);
-    let coincide =
-        |fa: &Poly, fj: &Poly, da: &Poly, dj: &Poly| &(&la(fa) * &lj(dj)) - &(&lj(fj) * &la(da));
-    let mut eqs = vec![
-        coincide(&a.image.x, &j.x, &a.image.q, &j.q),
-        coincide(&a.image.y, &j.y, &a.image.q, &j.q),
-        coincide(&a.image.depth, &j.depth, &a.image.w, &j.w),
+/// The penetration system of a segment and a patch, separable: the same point in space
+/// (image coincidence and the same depth, `depth_a / w_a = depth_j / w_j`) and the segment's
+/// constraint, in the variables of `a` then the patch's `(u, v)` on `unit`, the unit square.
+pub(super) fn penetration_system<'a>(
+    a: &'a Segment,
+    j: &'a ImagePolys,
+    unit: &'a DyadicBoxN,
+) -> SeparableSystem<'a> {
+    let polys = |im: &'a ImagePolys| vec![&im.x, &im.y, &im.q, &im.depth, &im.w];
+    let mut first = polys(&a.image);
+    first.extend(a.constraint.as_ref());
+    let mut equations = vec![
+        Equation::Ratio {
+            first: [0, 2],
+            second: [0, 2],
+        },
+        Equation::Ratio {
+            first: [1, 2],
+            second: [1, 2],
+        },
+        Equation::Ratio {
+            first: [3, 4],
+            second: [3, 4],
+        },
     ];
-    eqs.extend(a.constraint.iter().map(la));
-    let mut domain = a.domain.clone();
-    domain.extend([(Dyadic::ZERO, Dyadic::ONE), (Dyadic::ZERO, Dyadic::ONE)]);
-    (eqs, domain)
+    if a.constraint.is_some() {
+        equations.push(Equation::Zero { group: 0, poly: 5 });
+    }
+    SeparableSystem {
+        groups: [
+            Group {
+                polys: first,
+                domain: &a.domain,
+            },
+            Group {
+                polys: polys(j),
+                domain: unit,
+            },
+        ],
+        equations,
+    }
 }

@@ -53,24 +53,16 @@ impl LiftPatch {
     }
 
     /// The point of the patch (extended beyond its square) with image `y`, by Newton's
-    /// method from `w`: `None` if it does not converge.
-    pub(crate) fn newton(&self, y: [f64; 2], mut w: [f64; 2]) -> Option<[f64; 2]> {
+    /// method from `w`: `None` if it does not converge. Near a fold of the image map (the
+    /// patch's own silhouette) the image point may lie outside the image by rounding alone,
+    /// and Newton's steps then oscillate: there the damped iteration of [`Self::damped`]
+    /// settles on the point whose image is nearest. Either is an estimate: every use of a
+    /// lifted point is proven afterwards or reported as not bounded.
+    pub(crate) fn newton(&self, y: [f64; 2], w0: [f64; 2]) -> Option<[f64; 2]> {
+        let mut w = w0;
         let mut last = f64::INFINITY;
         for _ in 0..50 {
-            let ev = |p: &FPoly| p.eval(&w);
-            let q = ev(&self.f[2]);
-            let r = [ev(&self.f[0]) - y[0] * q, ev(&self.f[1]) - y[1] * q];
-            let jac: [[f64; 2]; 2] = std::array::from_fn(|k| {
-                std::array::from_fn(|a| ev(&self.df[k][a]) - y[k] * ev(&self.df[2][a]))
-            });
-            let det = jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0];
-            if det == 0.0 || !det.is_finite() {
-                return None;
-            }
-            let step = [
-                (jac[1][1] * r[0] - jac[0][1] * r[1]) / det,
-                (jac[0][0] * r[1] - jac[1][0] * r[0]) / det,
-            ];
+            let (_, step) = self.newton_step(y, w)?;
             w = [w[0] - step[0], w[1] - step[1]];
             if !(w[0].is_finite() && w[1].is_finite()) || w[0].abs() > 4.0 || w[1].abs() > 4.0 {
                 return None;
@@ -81,7 +73,60 @@ impl LiftPatch {
             }
         }
         // Steps at the level of rounding: converged as far as f64 allows.
-        (last < 1e-11).then_some(w)
+        if last < 1e-11 {
+            return Some(w);
+        }
+        self.damped(y, w0)
+    }
+
+    /// The residual `G(w; y)` relative to the size of its terms, and Newton's step; `None`
+    /// where the Jacobian is singular.
+    fn newton_step(&self, y: [f64; 2], w: [f64; 2]) -> Option<(f64, [f64; 2])> {
+        let ev = |p: &FPoly| p.eval(&w);
+        let q = ev(&self.f[2]);
+        let (x0, x1) = (ev(&self.f[0]), ev(&self.f[1]));
+        let r = [x0 - y[0] * q, x1 - y[1] * q];
+        let size = x0.abs() + x1.abs() + (y[0].abs() + y[1].abs() + 1.0) * q.abs();
+        let jac: [[f64; 2]; 2] = std::array::from_fn(|k| {
+            std::array::from_fn(|a| ev(&self.df[k][a]) - y[k] * ev(&self.df[2][a]))
+        });
+        let det = jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0];
+        if det == 0.0 || !det.is_finite() || size == 0.0 {
+            return None;
+        }
+        let step = [
+            (jac[1][1] * r[0] - jac[0][1] * r[1]) / det,
+            (jac[0][0] * r[1] - jac[1][0] * r[0]) / det,
+        ];
+        Some((r[0].abs().max(r[1].abs()) / size, step))
+    }
+
+    /// Newton's steps from `w`, each halved until the residual decreases: the point with the
+    /// least residual found, if that residual is at the level of rounding (1e-12 of its
+    /// terms).
+    fn damped(&self, y: [f64; 2], mut w: [f64; 2]) -> Option<[f64; 2]> {
+        let (mut res, mut step) = self.newton_step(y, w)?;
+        for _ in 0..200 {
+            let mut t = 1.0;
+            let mut next = None;
+            while t > 1e-6 {
+                let v = [w[0] - t * step[0], w[1] - t * step[1]];
+                if v[0].abs() <= 4.0 && v[1].abs() <= 4.0 {
+                    if let Some((r, s)) = self.newton_step(y, v) {
+                        if r < res {
+                            next = Some((v, r, s));
+                            break;
+                        }
+                    }
+                }
+                t *= 0.5;
+            }
+            let Some((v, r, s)) = next else {
+                break;
+            };
+            (w, res, step) = (v, r, s);
+        }
+        (res <= 1e-12).then_some(w)
     }
 
     /// Krawczyk's test with the image point as a parameter: whether every image point in
