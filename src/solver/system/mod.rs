@@ -681,6 +681,36 @@ pub(crate) fn within(inner: &[[f64; 2]], outer: &[[f64; 2]]) -> bool {
         .all(|(a, b)| b[0] <= a[0] && a[1] <= b[1])
 }
 
+/// A root just found, against the roots already known.
+pub(crate) enum Known {
+    /// It is one of them.
+    Same,
+    /// Its enclosure meets one's without being proven the same zero.
+    Undecided,
+    /// A zero not among them.
+    New,
+}
+
+/// Whether a root (its enclosure and the region where it is unique) is a known one: the
+/// same zero if either lies in the other's region, another if its enclosure meets none of
+/// theirs, undecided otherwise (`proofs/krawczyk.md`, each once).
+pub(crate) fn against_known(
+    roots: &[IsolatedRoot],
+    enc: &[[f64; 2]],
+    unique_in: &[[f64; 2]],
+) -> Known {
+    if roots
+        .iter()
+        .any(|r| within(enc, &r.unique_in) || within(&r.enclosure, unique_in))
+    {
+        Known::Same
+    } else if roots.iter().any(|r| meets(enc, &r.enclosure)) {
+        Known::Undecided
+    } else {
+        Known::New
+    }
+}
+
 /// Whether two closed boxes share a point.
 pub(crate) fn meets(a: &[[f64; 2]], b: &[[f64; 2]]) -> bool {
     a.iter().zip(b).all(|(x, y)| x[0] <= y[1] && y[0] <= x[1])
@@ -843,15 +873,13 @@ pub(crate) fn isolate<S: SquareSystem>(
                     // Refined, the same zero found from another box is recognised as above;
                     // an enclosure that still meets a known one may hold that zero or
                     // another: the region is not decided (proofs/krawczyk.md, each once).
-                    let known = |r: &IsolatedRoot| {
-                        within(&enc, &r.unique_in) || within(&r.enclosure, &unique_in)
-                    };
-                    if out.roots.iter().any(known) {
-                        continue;
-                    }
-                    if out.roots.iter().any(|r| meets(&enc, &r.enclosure)) {
-                        out.unresolved.push(unique_in);
-                        continue;
+                    match against_known(&out.roots, &enc, &unique_in) {
+                        Known::Same => continue,
+                        Known::Undecided => {
+                            out.unresolved.push(unique_in);
+                            continue;
+                        }
+                        Known::New => {}
                     }
                     let inside = enc
                         .iter()

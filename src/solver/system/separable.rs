@@ -14,7 +14,7 @@
 //! on the product polynomial's coefficients (`proofs/separable-systems.md`).
 
 use super::{
-    excludes, isolate, meets, split_polys, within, DyadicBoxN, SquareSystem, SystemOptions,
+    against_known, excludes, isolate, split_polys, DyadicBoxN, Known, SquareSystem, SystemOptions,
     SystemRoots,
 };
 use crate::bernstein::{lift, Bernstein, Poly};
@@ -168,18 +168,13 @@ fn settle_densely(
             continue;
         }
         for mut root in r.roots {
-            if out.roots.iter().any(|k| {
-                within(&root.enclosure, &k.unique_in) || within(&k.enclosure, &root.unique_in)
-            }) {
-                continue;
-            }
-            if out
-                .roots
-                .iter()
-                .any(|k| meets(&root.enclosure, &k.enclosure))
-            {
-                out.unresolved.push(root.unique_in);
-                continue;
+            match against_known(&out.roots, &root.enclosure, &root.unique_in) {
+                Known::Same => continue,
+                Known::Undecided => {
+                    out.unresolved.push(root.unique_in);
+                    continue;
+                }
+                Known::New => {}
             }
             // `inside` was judged against the box; judged again against the domain.
             root.inside = root
