@@ -13,6 +13,7 @@
 
 mod arith;
 mod bounds;
+mod compose;
 mod deriv;
 mod elevate;
 mod eval;
@@ -21,6 +22,7 @@ mod power;
 mod reduce;
 mod subdivide;
 
+pub use compose::{compose_curve, compose_curve_f64, residual_hull};
 pub use poly::{lift, Bernstein, BernsteinError, MAX_VARS};
 pub use power::antisymmetric_quotient;
 

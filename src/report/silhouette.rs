@@ -112,6 +112,19 @@ impl SilhouetteReport {
                 Some(tol) => t += &format!("accuracy: tolerance {tol:.3e}; not certified for every curve (see the curves)\n"),
                 None => t += "accuracy: not bounded (no tolerance asked)\n",
             }
+            if r.tolerance.is_some() {
+                let n: usize = r.curves.iter().map(|c| c.cubics.len()).sum();
+                let covered = r.curves.iter().filter(|c| c.cubic_bound.is_some()).count();
+                let worst = r
+                    .curves
+                    .iter()
+                    .filter_map(|c| c.cubic_bound)
+                    .fold(0.0f64, f64::max);
+                t += &format!(
+                    "cubics: {n} certified cubic pieces, {covered} of {} curves covered, each within {worst:.3e}\n",
+                    r.curves.len()
+                );
+            }
         }
         for (i, c) in r.curves.iter().enumerate() {
             t += &format!(

@@ -8,6 +8,7 @@ mod analytic;
 
 mod bitangent_curves;
 mod certificate;
+mod cubics;
 mod events;
 mod flecnodal;
 mod flecnodal_curves;

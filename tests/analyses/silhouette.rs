@@ -355,11 +355,7 @@ fn traced_sphere_silhouette_is_within_the_tolerance() {
     let n = [1.0 / 3.0, 2.0 / 3.0, 2.0 / 3.0];
     // An orthonormal basis of the circle's plane.
     let e1 = [2.0 / 3.0, 1.0 / 3.0, -2.0 / 3.0];
-    let e2 = [
-        n[1] * e1[2] - n[2] * e1[1],
-        n[2] * e1[0] - n[0] * e1[2],
-        n[0] * e1[1] - n[1] * e1[0],
-    ];
+    let e2 = analytic::cross(n, e1);
     for tol in [1e-3, 1e-6, 1e-9] {
         let s = silhouette(
             &m,

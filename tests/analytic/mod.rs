@@ -7,6 +7,15 @@
 use limn::number::Rational;
 use limn::surface::RationalPatch;
 
+/// The cross product `a × b`.
+pub fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
 /// Patches moved by an integer vector (exactly).
 pub fn shifted(patches: Vec<RationalPatch>, by: [i64; 3]) -> Vec<RationalPatch> {
     patches

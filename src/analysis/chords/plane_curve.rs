@@ -1,6 +1,7 @@
 //! Certified chord accuracy: vertices on each arc such that every drawn segment is within a
 //! world-space tolerance of the true curve (`proofs/chord-accuracy.md`).
 
+use super::cubic::{Cubic, CubicTrace, Jets};
 use crate::bernstein::Bernstein;
 use crate::geometry::Rect;
 use crate::number::margin;
@@ -9,7 +10,7 @@ use crate::solver::plane_curve::Arc;
 use crate::surface::RationalPatch;
 
 /// The most vertices placed on one arc before giving up on the tolerance.
-const MAX_ARC_POINTS: usize = 1 << 18;
+pub(super) const MAX_ARC_POINTS: usize = 1 << 18;
 
 /// `x / w` for an interval `w` of strict sign, outward rounded ([`Interval::checked_div`]).
 pub(crate) fn div(x: Interval, w: Interval) -> Option<Interval> {
@@ -32,11 +33,22 @@ fn norm(v: &[Interval; 3]) -> f64 {
 pub struct PatchAccuracy {
     /// g, then ∂g/∂u, ∂g/∂v, then ∂²g/∂u², ∂²g/∂u∂v, ∂²g/∂v² (empty for a patch traced along
     /// parameter lines only: [`PatchAccuracy::lines_only`]).
-    g: Vec<Bernstein<Interval>>,
+    pub(super) g: Vec<Bernstein<Interval>>,
     /// Bounds on the patch's derivatives.
-    surface: SurfaceBounds,
+    pub(super) surface: SurfaceBounds,
     /// g in f64, for root estimates (certified afterwards).
-    g_f64: Option<Bernstein<f64>>,
+    pub(super) g_f64: Option<Bernstein<f64>>,
+    /// f64 derivatives of g and of the patch, for the cubics' Hermite data.
+    pub(super) jets: Jets,
+}
+
+/// The patch's homogeneous coordinates in f64.
+fn homogeneous_f64(patch: &RationalPatch) -> Vec<Bernstein<f64>> {
+    patch
+        .homogeneous()
+        .iter()
+        .map(|h| h.convert(Precision::F64))
+        .collect()
 }
 
 pub(crate) fn derivs(p: &Bernstein<Rational>) -> [Bernstein<Interval>; 6] {
@@ -46,7 +58,7 @@ pub(crate) fn derivs(p: &Bernstein<Rational>) -> [Bernstein<Interval>; 6] {
 }
 
 /// Index in the 6-element derivative arrays of ∂/∂a (a = 0, 1) and ∂²/∂a∂b.
-fn d1(a: usize) -> usize {
+pub(super) fn d1(a: usize) -> usize {
     1 + a
 }
 fn d2(a: usize, b: usize) -> usize {
@@ -61,7 +73,7 @@ fn d2(a: usize, b: usize) -> usize {
 /// for bounds on the derivatives of `S = P / W` over boxes.
 pub(crate) struct SurfaceBounds {
     /// For X, Y, Z, W: f, f_u, f_v, f_uu, f_uv, f_vv.
-    h: Vec<[Bernstein<Interval>; 6]>,
+    pub(super) h: Vec<[Bernstein<Interval>; 6]>,
 }
 
 /// A bivariate polynomial restricted to the box `[lo, hi]` of its domain, as interval
@@ -221,10 +233,12 @@ impl SurfaceBounds {
 impl PatchAccuracy {
     /// Converts (once) the exact polynomials a patch's bounds are computed from.
     pub fn new(patch: &RationalPatch, g: &Bernstein<Rational>) -> PatchAccuracy {
+        let g_f64: Bernstein<f64> = g.convert(Precision::F64);
         PatchAccuracy {
             g: derivs(g).to_vec(),
             surface: SurfaceBounds::new(patch),
-            g_f64: Some(g.convert(Precision::F64)),
+            jets: Jets::new(Some(&g_f64), &homogeneous_f64(patch)),
+            g_f64: Some(g_f64),
         }
     }
 
@@ -235,6 +249,7 @@ impl PatchAccuracy {
             g: Vec::new(),
             surface: SurfaceBounds::new(patch),
             g_f64: None,
+            jets: Jets::new(None, &homogeneous_f64(patch)),
         }
     }
 
@@ -261,8 +276,32 @@ impl PatchAccuracy {
         Interval::try_new(a, b).unwrap_or(Interval::new(f64::NEG_INFINITY, f64::INFINITY))
     }
 
+    /// The box `[lo, hi]` grown by a thousandth of its size (and 1e-9) on each side, and
+    /// enclosures over it of the partials of ∂g/∂m along u and v (`None` without a curve
+    /// function).
+    pub(super) fn gm_gradient(
+        &self,
+        lo: [f64; 2],
+        hi: [f64; 2],
+        m: usize,
+    ) -> ([f64; 2], [f64; 2], Option<[Interval; 2]>) {
+        let grow = |k: usize| 1e-3 * (hi[k] - lo[k]) + 1e-9;
+        let glo = [0, 1].map(|k| lo[k] - grow(k));
+        let ghi = [0, 1].map(|k| hi[k] + grow(k));
+        let Ok(g) = <&[Bernstein<Interval>; 6]>::try_from(self.g.as_slice()) else {
+            return (glo, ghi, None);
+        };
+        let p = partials_on(g, &glo, &ghi);
+        // p = [g_u, g_v, g_uu, g_uv, g_vv]; ∂g_m/∂u, ∂g_m/∂v.
+        let grad = [p[d2(m, 0) - 1], p[d2(m, 1) - 1]];
+        let finite = grad
+            .iter()
+            .all(|x| x.lo().is_finite() && x.hi().is_finite());
+        (glo, ghi, finite.then_some(grad))
+    }
+
     /// Bounds of |φ'| and |φ''| over a box where ∂g/∂m has a strict sign.
-    fn phi_bounds(&self, lo: [f64; 2], hi: [f64; 2], m: usize) -> Option<(f64, f64)> {
+    pub(super) fn phi_bounds(&self, lo: [f64; 2], hi: [f64; 2], m: usize) -> Option<(f64, f64)> {
         if self.g.is_empty() {
             return None;
         }
@@ -419,6 +458,7 @@ impl PatchAccuracy {
             points: vec![p0, p1],
             bound: None,
             pieces: Vec::new(),
+            cubics: Vec::new(),
         };
         let (Some(phi1), Some(l_m)) = (phi1, self.surface.bounds(blo, bhi, m).map(|b| b[0])) else {
             return fail(p0, p1);
@@ -440,21 +480,7 @@ impl PatchAccuracy {
         if worst > tol {
             return fail(p0, p1);
         }
-        let mut tracer = Tracer {
-            acc: self,
-            m,
-            on_edge,
-            blo,
-            bhi,
-            tol,
-            verts: vec![(p0[o], p0[m], end_delta(from))],
-            worst,
-            pieces: Vec::new(),
-        };
         let last = (p1[o], p1[m], end_delta(to));
-        let ok = tracer.cover(tracer.verts[0], last, phi1, None, 0);
-        tracer.verts.push(last);
-        let n = tracer.verts.len();
         // The end pieces: from the end vertex's level to the true end, anywhere in its
         // location box, the arc stays within the vertex's `end_delta` in m.
         let end = |b: Rect, v: Vertex| {
@@ -473,6 +499,56 @@ impl PatchAccuracy {
                 .min(bhi[m]);
             Rect::new(lo, hi)
         };
+        // Certified cubics first (`proofs/cubic-pieces.md`); the certified vertices of the
+        // chord tracer where they fail.
+        let cubic = CubicTrace {
+            acc: self,
+            m,
+            on_edge,
+            blo,
+            bhi,
+            tol,
+            reach: if on_edge {
+                0.0
+            } else {
+                0.5 * tol / l_m.max(f64::MIN_POSITIVE)
+            },
+            grad: self.gm_gradient(blo, bhi, m),
+            cell_bounds: Some((Rect::new(blo, bhi), l_m, l_o)),
+        };
+        if let Some(mut c) = cubic.trace((p0[o], p0[m]), (p1[o], p1[m]), end_delta(from), last.2) {
+            let n = c.verts.len();
+            let mut pieces = vec![(end(from, c.verts[0]), 0, 0)];
+            pieces.append(&mut c.pieces);
+            pieces.push((end(to, c.verts[n - 1]), n - 1, n - 1));
+            // The cubics at the arc's ends also answer for the end pieces.
+            let k = c.cubics.len();
+            for (i, ends) in [(0, end_piece(from)), (k - 1, end_piece(to))] {
+                let q = &mut c.cubics[i];
+                q.bound = margin::up(q.bound + ends, margin::FEW);
+                q.uv_bound = margin::up(q.uv_bound + ends, margin::FEW);
+            }
+            return Traced {
+                points: c.verts.iter().map(|v| uv(m, v.1, v.0)).collect(),
+                bound: Some(worst.max(c.worst)),
+                pieces,
+                cubics: c.cubics,
+            };
+        }
+        let mut tracer = Tracer {
+            acc: self,
+            m,
+            on_edge,
+            blo,
+            bhi,
+            tol,
+            verts: vec![(p0[o], p0[m], end_delta(from))],
+            worst,
+            pieces: Vec::new(),
+        };
+        let ok = tracer.cover(tracer.verts[0], last, phi1, None, 0);
+        tracer.verts.push(last);
+        let n = tracer.verts.len();
         let mut pieces = vec![(end(from, tracer.verts[0]), 0, 0)];
         pieces.extend(tracer.pieces.iter().map(|&(b, i)| (b, i, i + 1)));
         pieces.push((end(to, last), n - 1, n - 1));
@@ -480,6 +556,7 @@ impl PatchAccuracy {
             points: tracer.verts.iter().map(|v| uv(m, v.1, v.0)).collect(),
             bound: ok.then_some(tracer.worst),
             pieces: if ok { pieces } else { Vec::new() },
+            cubics: Vec::new(),
         }
     }
 }
@@ -496,10 +573,14 @@ pub struct Traced {
     /// `first..=last` of the vertices it also holds: one per chord (its two vertices) and one
     /// per end (the piece beyond the end vertex's level, up to the true end).
     pub pieces: Vec<(Rect, usize, usize)>,
+    /// Certified cubic pieces from the `from` end to the `to` end (`proofs/cubic-pieces.md`),
+    /// each within its bound of the arc and together covering it; empty where the arc was
+    /// traced by certified vertices instead, or not traced.
+    pub cubics: Vec<Cubic>,
 }
 
 /// A vertex: (o level, m value, δ = certified error of the m value at that level).
-type Vertex = (f64, f64, f64);
+pub(super) type Vertex = (f64, f64, f64);
 
 /// Pieces needing more vertices than this are halved before vertices are placed.
 const SPLIT_VERTICES: f64 = 48.0;
@@ -541,26 +622,6 @@ impl Tracer<'_> {
             self.acc
                 .point_on_line(self.m, self.blo[self.m], self.bhi[self.m], level, guess)?;
         Some((level, 0.5 * (x + y), 0.5 * (y - x)))
-    }
-
-    /// The bound E of the chord between two vertices, from bounds Φ₂ (of |φ''|) and sb over
-    /// a box containing the arc piece between them.
-    fn chord_bound(&self, a: Vertex, b: Vertex, phi2: f64, sb: [f64; 4]) -> f64 {
-        let [l_m, s_mm, s_mo, s_oo] = sb;
-        let h = (b.0 - a.0).abs();
-        let slope = if h > 0.0 {
-            (b.1 - a.1).abs() / h
-        } else {
-            f64::INFINITY
-        };
-        if h == 0.0 {
-            // Coincident levels: only the vertex errors count.
-            return margin::up(l_m * a.2.max(b.2), margin::MANY);
-        }
-        let e = l_m * (h * h / 8.0 * phi2 + a.2.max(b.2))
-            + h * h / 8.0 * (s_mm * slope * slope + 2.0 * s_mo * slope + s_oo);
-        // About twenty roundings (`proofs/rounding-margins.md`).
-        margin::up(e, margin::MANY)
     }
 
     /// Bounds over the box of the arc piece between vertices a and b, which stays within
@@ -667,7 +728,7 @@ impl Tracer<'_> {
                     None => return false,
                 }
             };
-            let e = self.chord_bound(prev, next, phi2, sb);
+            let e = chord_bound(prev, next, phi2, sb);
             if e.is_finite() && e <= self.tol {
                 self.worst = self.worst.max(e);
                 let first = self.verts.len() - 1;
@@ -690,9 +751,29 @@ impl Tracer<'_> {
     }
 }
 
+/// The bound E of the chord between two vertices, from bounds Φ₂ (of |φ''|) and sb over
+/// a box containing the arc piece between them.
+pub(super) fn chord_bound(a: Vertex, b: Vertex, phi2: f64, sb: [f64; 4]) -> f64 {
+    let [l_m, s_mm, s_mo, s_oo] = sb;
+    let h = (b.0 - a.0).abs();
+    let slope = if h > 0.0 {
+        (b.1 - a.1).abs() / h
+    } else {
+        f64::INFINITY
+    };
+    if h == 0.0 {
+        // Coincident levels: only the vertex errors count.
+        return margin::up(l_m * a.2.max(b.2), margin::MANY);
+    }
+    let e = l_m * (h * h / 8.0 * phi2 + a.2.max(b.2))
+        + h * h / 8.0 * (s_mm * slope * slope + 2.0 * s_mo * slope + s_oo);
+    // About twenty roundings (`proofs/rounding-margins.md`).
+    margin::up(e, margin::MANY)
+}
+
 /// The univariate polynomial (in variable m) of a bivariate one on the line where the other
 /// variable equals `level`: each fibre along the other variable evaluated there.
-fn on_line<N: Number>(p: &Bernstein<N>, m: usize, level: N) -> Bernstein<N> {
+pub(super) fn on_line<N: Number>(p: &Bernstein<N>, m: usize, level: N) -> Bernstein<N> {
     let o = 1 - m;
     let d = [p.degrees()[0], p.degrees()[1]];
     let coeffs: Vec<N> = (0..=d[m])

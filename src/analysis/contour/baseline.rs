@@ -207,6 +207,8 @@ pub fn baseline_silhouette(
                 points: line.iter().map(|p| draw.eval(p[0], p[1])).collect(),
                 points_uv: line.iter().map(|p| (pi, p[0], p[1])).collect(),
                 pieces: Vec::new(),
+                cubics: Vec::new(),
+                cubic_bound: None,
             });
         }
     }

@@ -2,7 +2,9 @@
 //! closed loops and open curves, with where three or more arcs meet.
 
 use crate::analysis::chords::plane_curve::{PatchAccuracy, Traced};
-use crate::analysis::contour::curves::{CurvePiece, Node, SilhouetteCurve, SingularPoint};
+use crate::analysis::contour::curves::{
+    CubicPiece, CurvePiece, Node, SilhouetteCurve, SingularPoint,
+};
 use crate::analysis::contour::drawing::{densify, DENSIFY_STEPS};
 use crate::analysis::contour::joins::Joins;
 use crate::analysis::contour::sides::side_of;
@@ -128,6 +130,8 @@ pub(crate) fn chain_model(
         let mut visited = Vec::new();
         let mut points_uv = Vec::new();
         let mut pieces = Vec::new();
+        let mut cubics = Vec::new();
+        let mut cubic_bound: Option<f64> = accuracy.map(|_| 0.0);
         let mut worst: Option<f64> = accuracy.map(|_| 0.0);
         for &(arc, backwards) in &walked {
             let (p, k) = arc_ref[arc];
@@ -149,10 +153,33 @@ pub(crate) fn chain_model(
                     } else {
                         t.pieces.clone()
                     };
+                    if t.cubics.is_empty() {
+                        cubic_bound = None;
+                    }
+                    let mut own: Vec<CubicPiece> = t
+                        .cubics
+                        .iter()
+                        .map(|c| CubicPiece {
+                            patch: p,
+                            cubic: c.clone(),
+                        })
+                        .collect();
+                    if backwards {
+                        own.reverse();
+                        for q in &mut own {
+                            q.cubic.uv.reverse();
+                            q.cubic.space.reverse();
+                        }
+                    }
+                    for q in &own {
+                        cubic_bound = cubic_bound.map(|w| w.max(q.cubic.bound));
+                    }
+                    cubics.extend(own);
                     (t.points.clone(), local)
                 }
                 Some(None) => {
                     worst = None;
+                    cubic_bound = None;
                     let pts = densify(&gs_fast[p], &tops[p], a, DENSIFY_STEPS);
                     let n = pts.len();
                     (pts, whole(n))
@@ -205,6 +232,8 @@ pub(crate) fn chain_model(
             points_uv,
             points,
             pieces,
+            cubic_bound: cubic_bound.filter(|_| !cubics.is_empty()),
+            cubics,
         });
     }
     // Junctions: nodes where three or more proven arcs meet.

@@ -2,6 +2,7 @@
 //! a model with their patches, certified flags and error bounds, singular points, degenerate
 //! cases and what is unresolved.
 
+use crate::analysis::chords::cubic::Cubic;
 use crate::analysis::frame::Frame;
 use crate::bernstein::Bernstein;
 use crate::geometry::Rect;
@@ -57,6 +58,23 @@ pub struct SilhouetteCurve {
     /// directions of [`crate::analysis::events`]). Empty for curves not found by the certified solver.
     #[serde(skip)]
     pub pieces: Vec<CurvePiece>,
+    /// The curve as certified cubic Bézier pieces, in order along it (empty without a
+    /// tolerance, or where an arc was traced by certified vertices instead or not at all:
+    /// then `cubic_bound` is absent). Each holds its own proven bounds
+    /// (`proofs/cubic-pieces.md`).
+    pub cubics: Vec<CubicPiece>,
+    /// The largest proven bound of the space cubics, in model units: present when the whole
+    /// curve is covered by cubics.
+    pub cubic_bound: Option<f64>,
+}
+/// A certified cubic piece of a curve on one patch ([`SilhouetteCurve::cubics`]).
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct CubicPiece {
+    /// The patch whose parameters `uv` are.
+    pub patch: usize,
+    /// The control points and bounds.
+    #[serde(flatten)]
+    pub cubic: Cubic,
 }
 /// A box of one patch's parameters that holds a piece of a curve and the drawn points
 /// `first..=last` of it ([`SilhouetteCurve::pieces`]). The pieces of a curve cover it, and
@@ -138,6 +156,17 @@ impl Silhouette {
         }
         for c in &mut self.curves {
             c.certified &= frame.drawing(&mut c.points, &mut c.error_bound, tol);
+            // A Bézier curve moves with its control points; their rounding adds at most its
+            // largest to the bound (convex combinations).
+            let mut worst: Option<f64> = c.cubic_bound.map(|_| 0.0);
+            for q in &mut c.cubics {
+                let added = frame.points(&mut q.cubic.space);
+                q.cubic.bound = frame
+                    .bound(Some(q.cubic.bound), added)
+                    .unwrap_or(f64::INFINITY);
+                worst = worst.map(|w| w.max(q.cubic.bound));
+            }
+            c.cubic_bound = worst;
         }
         for p in &mut self.singular_points {
             p.point = frame.point(p.point);

@@ -13,13 +13,9 @@
 //! a ratio equation compares the ranges of the two ratios, which is as strong as the sign test
 //! on the product polynomial's coefficients (`proofs/separable-systems.md`).
 
-use super::{
-    against_known, excludes, isolate, split_polys, DyadicBoxN, Known, SquareSystem, SystemOptions,
-    SystemRoots,
-};
+use super::{excludes, isolate, split_polys, DyadicBoxN, SquareSystem, SystemOptions, SystemRoots};
 use crate::bernstein::{lift, Bernstein, Poly};
 use crate::number::{Interval, Number, Precision, Rational};
-use crate::solver::dyadic::Dyadic;
 use crate::solver::precision::{Ladder, Level};
 use std::cell::OnceCell;
 use std::rc::Rc;
@@ -108,28 +104,21 @@ pub fn solve_separable(
         .flat_map(|g| g.domain.iter().copied())
         .collect();
     let separable = isolate(&solver, &domain, exclude, opts);
-    if separable.unresolved.is_empty() || separable.unresolved.len() > DENSE_AT_MOST {
+    if separable.unresolved.is_empty() {
         return separable;
     }
     settle_densely(system, separable, &domain, exclude, opts)
 }
 
-/// The subdivision below an unresolved box of the separable solve that the dense solver may
-/// take: its depth and boxes; and the most unresolved boxes a separable solve may leave for
-/// the dense solver to try (more are a budget spent on a multiple root or a cluster, which
-/// the dense solver would not settle either).
-const DENSE_DEPTH: u32 = 2;
-const DENSE_BOXES: usize = 64;
-const DENSE_AT_MOST: usize = 8;
-
-/// Each box the separable solve left unresolved, solved again by the dense solver on the
-/// multiplied-out equations ([`SeparableSystem::dense`]) with a small budget: the centre
+/// Where the separable solve left boxes unresolved, the whole system is solved again by the
+/// dense solver on the multiplied-out equations ([`SeparableSystem::dense`]), with the same
+/// options and exclusions, and the answer with fewer unresolved boxes is kept (the dense one
+/// on a tie). Both are certified answers for the whole domain (`proofs/krawczyk.md`,
+/// `proofs/separable-systems.md` §3), so either may be returned; the dense solver's centre
 /// values and Jacobian of one product polynomial can be tighter than the products of the
-/// groups' separate enclosures (the patch's coordinates large against the box, say), and
-/// Krawczyk's test then succeed where it failed. Both solves are certified; a root found in a
-/// box is merged as the solver merges roots found from two boxes (`proofs/krawczyk.md`, each
-/// once), and a box the dense solve does not settle stays unresolved. Tried only where the
-/// separable solve left at most [`DENSE_AT_MOST`] boxes.
+/// groups' separate enclosures (near tangential crossings, along shared sides), so a system
+/// the separable solve cannot settle is answered at least as completely as by the dense
+/// solver alone. The work of both is counted.
 fn settle_densely(
     system: &SeparableSystem,
     separable: SystemRoots,
@@ -138,59 +127,15 @@ fn settle_densely(
     opts: &SystemOptions,
 ) -> SystemRoots {
     let (equations, _) = system.dense();
-    let dense_opts = SystemOptions {
-        max_depth: DENSE_DEPTH,
-        max_boxes: DENSE_BOXES,
-        ..opts.clone()
+    let dense = super::solve_system_excluding(&equations, &[], domain, exclude, opts);
+    let (mut kept, other) = if separable.unresolved.len() < dense.unresolved.len() {
+        (separable, dense)
+    } else {
+        (dense, separable)
     };
-    let dlo: Vec<f64> = domain.iter().map(|d| d.0.to_f64()).collect();
-    let dhi: Vec<f64> = domain.iter().map(|d| d.1.to_f64()).collect();
-    let mut out = SystemRoots {
-        unresolved: Vec::new(),
-        ..separable.clone()
-    };
-    for u in &separable.unresolved {
-        // The box's corners are dyadic (the subdivision's), exact in f64.
-        let Some(bx) = u
-            .iter()
-            .map(|e| Some((dyadic_of(e[0])?, dyadic_of(e[1])?)))
-            .collect::<Option<DyadicBoxN>>()
-        else {
-            out.unresolved.push(u.clone());
-            continue;
-        };
-        let r = super::solve_system_excluding(&equations, &[], &bx, exclude, &dense_opts);
-        out.boxes += r.boxes;
-        out.escalations.merge(&r.escalations);
-        if !r.unresolved.is_empty() {
-            // Not settled: the box stays unresolved as the separable solve left it.
-            out.unresolved.push(u.clone());
-            continue;
-        }
-        for mut root in r.roots {
-            match against_known(&out.roots, &root.enclosure, &root.unique_in) {
-                Known::Same => continue,
-                Known::Undecided => {
-                    out.unresolved.push(root.unique_in);
-                    continue;
-                }
-                Known::New => {}
-            }
-            // `inside` was judged against the box; judged again against the domain.
-            root.inside = root
-                .enclosure
-                .iter()
-                .enumerate()
-                .all(|(i, e)| dlo[i] <= e[0] && e[1] <= dhi[i]);
-            out.roots.push(root);
-        }
-    }
-    out
-}
-
-/// A dyadic in `[0, 1]` given as an f64, if it is one.
-fn dyadic_of(x: f64) -> Option<Dyadic> {
-    Dyadic::from_rational(&Rational::from_f64(x)?)
+    kept.boxes += other.boxes;
+    kept.escalations.merge(&other.escalations);
+    kept
 }
 
 impl SeparableSystem<'_> {
