@@ -112,8 +112,8 @@ pub fn solve_separable(
 
 /// Where the separable solve left boxes unresolved, the whole system is solved again by the
 /// dense solver on the multiplied-out equations ([`SeparableSystem::dense`]), with the same
-/// options and exclusions, and the answer with fewer unresolved boxes is kept (the dense one
-/// on a tie). Both are certified answers for the whole domain (`proofs/krawczyk.md`,
+/// options and exclusions, and the answer whose unresolved boxes have the smaller total volume
+/// is kept (the dense one on a tie). Both are certified answers for the whole domain (`proofs/krawczyk.md`,
 /// `proofs/separable-systems.md` §3), so either may be returned; the dense solver's centre
 /// values and Jacobian of one product polynomial can be tighter than the products of the
 /// groups' separate enclosures (near tangential crossings, along shared sides), so a system
@@ -128,7 +128,14 @@ fn settle_densely(
 ) -> SystemRoots {
     let (equations, _) = system.dense();
     let dense = super::solve_system_excluding(&equations, &[], domain, exclude, opts);
-    let (mut kept, other) = if separable.unresolved.len() < dense.unresolved.len() {
+    // The measure left undecided: the unresolved boxes' total volume.
+    let volume = |r: &SystemRoots| -> f64 {
+        r.unresolved
+            .iter()
+            .map(|b| b.iter().map(|e| e[1] - e[0]).product::<f64>())
+            .sum()
+    };
+    let (mut kept, other) = if volume(&separable) < volume(&dense) {
         (separable, dense)
     } else {
         (dense, separable)
