@@ -20,6 +20,21 @@ pub(super) fn self_crossing_system(s: &Segment) -> (Vec<Poly>, DyadicBoxN) {
     (eqs, domain)
 }
 
+/// The same image point, `x_a / q_a = x_b / q_b` and `y_a / q_a = y_b / q_b`, for groups whose
+/// polynomials start with x, y, q.
+fn image_coincidence() -> Vec<Equation> {
+    vec![
+        Equation::Ratio {
+            first: [0, 2],
+            second: [0, 2],
+        },
+        Equation::Ratio {
+            first: [1, 2],
+            second: [1, 2],
+        },
+    ]
+}
+
 /// The crossing system of two segments, separable: image coincidence (`x_a / q_a = x_b / q_b`,
 /// the same for `y`) and their constraints, in the variables of `a` then of `b`.
 pub(super) fn crossing_system<'a>(a: &'a Segment, b: &'a Segment) -> SeparableSystem<'a> {
@@ -30,16 +45,7 @@ pub(super) fn crossing_system<'a>(a: &'a Segment, b: &'a Segment) -> SeparableSy
             .collect(),
         domain: &s.domain,
     };
-    let mut equations = vec![
-        Equation::Ratio {
-            first: [0, 2],
-            second: [0, 2],
-        },
-        Equation::Ratio {
-            first: [1, 2],
-            second: [1, 2],
-        },
-    ];
+    let mut equations = image_coincidence();
     for (g, s) in [a, b].into_iter().enumerate() {
         if s.constraint.is_some() {
             equations.push(Equation::Zero { group: g, poly: 3 });
@@ -62,20 +68,11 @@ pub(super) fn penetration_system<'a>(
     let polys = |im: &'a ImagePolys| vec![&im.x, &im.y, &im.q, &im.depth, &im.w];
     let mut first = polys(&a.image);
     first.extend(a.constraint.as_ref());
-    let mut equations = vec![
-        Equation::Ratio {
-            first: [0, 2],
-            second: [0, 2],
-        },
-        Equation::Ratio {
-            first: [1, 2],
-            second: [1, 2],
-        },
-        Equation::Ratio {
-            first: [3, 4],
-            second: [3, 4],
-        },
-    ];
+    let mut equations = image_coincidence();
+    equations.push(Equation::Ratio {
+        first: [3, 4],
+        second: [3, 4],
+    });
     if a.constraint.is_some() {
         equations.push(Equation::Zero { group: 0, poly: 5 });
     }
