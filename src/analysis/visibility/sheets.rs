@@ -14,33 +14,67 @@ use crate::solver::system::DyadicBoxN;
 pub(crate) fn range_on(p: &Bernstein<Interval>, lo: &[f64], hi: &[f64]) -> Interval {
     p.restrict_box_f64(lo, hi).hull()
 }
-/// Boxes `[c − 2^-k, c + 2^-k] ∩ [0, 1]` around a dyadic parameter point, coarse to fine.
-pub(crate) fn boxes_around(lo: &[Rational; 2], hi: &[Rational; 2]) -> Vec<DyadicBoxN> {
-    let mut out = Vec::new();
-    for k in 3..=22u32 {
-        let mut r = Rational::from(1);
-        r >>= k;
-        let clamp = |x: Rational| -> Rational {
-            if x < 0 {
-                Rational::new()
-            } else if x > 1 {
-                Rational::from(1)
-            } else {
-                x
-            }
-        };
-        let b: Option<DyadicBoxN> = (0..2)
-            .map(|a| {
-                let l = clamp(Rational::from(&lo[a] - &r));
-                let h = clamp(Rational::from(&hi[a] + &r));
-                Some((dy(&l)?, dy(&h)?))
-            })
-            .collect();
-        if let Some(b) = b {
-            out.push(b);
+/// The box `[lo − 2^-k, hi + 2^-k] ∩ [0, 1]²` around a dyadic parameter box (`None` if a
+/// corner is not dyadic).
+fn box_around(lo: &[Rational; 2], hi: &[Rational; 2], k: u32) -> Option<DyadicBoxN> {
+    let mut r = Rational::from(1);
+    r >>= k;
+    let clamp = |x: Rational| -> Rational {
+        if x < 0 {
+            Rational::new()
+        } else if x > 1 {
+            Rational::from(1)
+        } else {
+            x
+        }
+    };
+    (0..2)
+        .map(|a| {
+            let l = clamp(Rational::from(&lo[a] - &r));
+            let h = clamp(Rational::from(&hi[a] + &r));
+            Some((dy(&l)?, dy(&h)?))
+        })
+        .collect()
+}
+
+/// The margins `2^-k` tried around a point, coarse to fine.
+const MARGINS: std::ops::RangeInclusive<u32> = 3..=22;
+
+/// How many of the coarsest margins are tried one by one before the finest is tried.
+const COARSE_TRIES: u32 = 3;
+
+/// A box `[lo − 2^-k, hi + 2^-k] ∩ [0, 1]²` (k in [`MARGINS`]) on which `holds` is true, or
+/// `None`. The coarsest few are tried in turn; then the finest, and if it does not hold
+/// either, none is tried further (a test on a box rarely holds where it fails on a box
+/// inside it); otherwise the margin is bisected between the last failure and the finest.
+/// Any box returned is one on which `holds` was evaluated true: which one it is is a matter
+/// of cost and reach, never of soundness.
+pub(crate) fn first_box_around(
+    lo: &[Rational; 2],
+    hi: &[Rational; 2],
+    mut holds: impl FnMut(&DyadicBoxN) -> bool,
+) -> Option<DyadicBoxN> {
+    let (first, last) = (*MARGINS.start(), *MARGINS.end());
+    let mut test = |k: u32| box_around(lo, hi, k).filter(|b| holds(b));
+    for k in first..first + COARSE_TRIES {
+        if let Some(b) = test(k) {
+            return Some(b);
         }
     }
-    out
+    // Bisection: the margin at `fail` failed, the one at `ok` holds.
+    let mut best = test(last)?;
+    let (mut fail, mut ok) = (first + COARSE_TRIES - 1, last);
+    while ok - fail > 1 {
+        let mid = fail + (ok - fail) / 2;
+        match test(mid) {
+            Some(b) => {
+                best = b;
+                ok = mid;
+            }
+            None => fail = mid,
+        }
+    }
+    Some(best)
 }
 pub(crate) fn f64_box(b: &DyadicBoxN) -> (Vec<f64>, Vec<f64>) {
     (
@@ -67,7 +101,7 @@ pub fn injective_box_around(
         .flatten()
         .map(|p| p.convert(Precision::F64))
         .collect();
-    boxes_around(lo, hi).into_iter().find(|b| {
+    first_box_around(lo, hi, |b| {
         let (lo, hi) = f64_box(b);
         let r: Vec<Interval> = jac.iter().map(|p| range_on(p, &lo, &hi)).collect();
         let det = r[0].mul(&r[3]).sub(&r[1].mul(&r[2]));
@@ -131,7 +165,7 @@ pub fn fold_box_around(
         })
         .collect();
     let polys = FoldPolys::at(scene, j, &mid)?;
-    boxes_around(lo, hi).into_iter().find(|b| {
+    first_box_around(lo, hi, |b| {
         let (blo, bhi) = f64_box(b);
         polys.holds(&blo, &bhi)
     })
@@ -197,7 +231,7 @@ impl FoldPolys {
 
     /// [`FoldPolys::holds`], with the box halved at most `depth` times to prove it.
     pub(crate) fn holds_within(&self, lo: &[f64], hi: &[f64], depth: u32) -> bool {
-        fold_signs(self, lo, hi, depth).is_some()
+        !signs_differ_at_corners(self, lo, hi) && fold_signs(self, lo, hi, depth).is_some()
     }
 
     fn new(kappa: &Poly, eta: &Poly, q: &Poly) -> FoldPolys {
@@ -225,23 +259,11 @@ impl FoldPolys {
 /// (halved up to `depth` times) that all agree; `None` if not proven.
 pub(crate) fn fold_signs(p: &FoldPolys, lo: &[f64], hi: &[f64], depth: u32) -> Option<[bool; 3]> {
     let jet = |f: &[Bernstein<Interval>; 6]| jet_on(f, lo, hi);
-    let q = jet(&p.q);
-    let here = (|| {
-        let k = quotient_jet(&jet(&p.kappa), &q)?;
-        let h = quotient_jet(&jet(&p.eta), &q)?;
-        let (ku, kv) = (k[1], k[2]);
-        let two = Interval::point(2.0);
-        let form = |f: &[Interval; 6]| {
-            f[3].mul(&kv.mul(&kv))
-                .sub(&two.mul(&f[4]).mul(&ku).mul(&kv))
-                .add(&f[5].mul(&ku.mul(&ku)))
-        };
-        let c = kv.mul(&form(&h)).sub(&h[2].mul(&form(&k)));
-        [ku, kv, c]
-            .iter()
+    let here = fold_quantities(&jet(&p.kappa), &jet(&p.eta), &jet(&p.q)).and_then(|q| {
+        q.iter()
             .all(strict)
-            .then(|| [ku.lo() > 0.0, kv.lo() > 0.0, c.lo() > 0.0])
-    })();
+            .then(|| [q[0].lo() > 0.0, q[1].lo() > 0.0, q[2].lo() > 0.0])
+    });
     if here.is_some() || depth == 0 {
         return here;
     }
@@ -257,4 +279,101 @@ pub(crate) fn fold_signs(p: &FoldPolys, lo: &[f64], hi: &[f64], depth: u32) -> O
         }
     }
     common
+}
+
+/// `(κ_u, κ_v, C)` from the jets of κ, η and q (on a box or at a point), `None` where q's
+/// enclosure contains zero.
+fn fold_quantities(
+    kappa: &[Interval; 6],
+    eta: &[Interval; 6],
+    q: &[Interval; 6],
+) -> Option<[Interval; 3]> {
+    let k = quotient_jet(kappa, q)?;
+    let h = quotient_jet(eta, q)?;
+    let (ku, kv) = (k[1], k[2]);
+    let two = Interval::point(2.0);
+    let form = |f: &[Interval; 6]| {
+        f[3].mul(&kv.mul(&kv))
+            .sub(&two.mul(&f[4]).mul(&ku).mul(&kv))
+            .add(&f[5].mul(&ku.mul(&ku)))
+    };
+    let c = kv.mul(&form(&h)).sub(&h[2].mul(&form(&k)));
+    Some([ku, kv, c])
+}
+
+/// Whether one of `(κ_u, κ_v, C)` is proven to take both strict signs at the corners of the
+/// box: then none of them can keep a strict sign on it, nor agree on a cover of it, and
+/// [`fold_signs`] fails there. A filter: point enclosures cost a fraction of box enclosures.
+fn signs_differ_at_corners(p: &FoldPolys, lo: &[f64], hi: &[f64]) -> bool {
+    let at = |u: f64, v: f64| {
+        let x = [Interval::point(u), Interval::point(v)];
+        let jet = |f: &[Bernstein<Interval>; 6]| f.each_ref().map(|g| g.eval(&x));
+        fold_quantities(&jet(&p.kappa), &jet(&p.eta), &jet(&p.q))
+    };
+    let mut seen = [[false; 2]; 3];
+    for (u, v) in [
+        (lo[0], lo[1]),
+        (hi[0], lo[1]),
+        (lo[0], hi[1]),
+        (hi[0], hi[1]),
+    ] {
+        let Some(q) = at(u, v) else { continue };
+        for (s, x) in seen.iter_mut().zip(q) {
+            s[0] |= x.lo() > 0.0;
+            s[1] |= x.hi() < 0.0;
+        }
+    }
+    seen.iter().any(|s| s[0] && s[1])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::view::View;
+    use crate::model::{Format, Model, WeldTolerance};
+    use crate::testing::shapes;
+
+    /// The corner filter rejects only boxes the fold lemma's test rejects too, and the box
+    /// search returns only boxes on which its test holds: on every patch of a torus seen from
+    /// a generic direction, over boxes of a grid at three scales.
+    #[test]
+    fn the_corner_filter_and_the_box_search_are_sound() {
+        let torus = shapes::torus(&Rational::from(2), &Rational::from(1));
+        let model = Model::from_patches(Format::Json, torus);
+        let view = View::Direction([7, 2, 4].map(Rational::from));
+        let scene = Scene::new(&model, &view, WeldTolerance::Exact).unwrap();
+        let (mut rejected, mut held) = (0, 0);
+        for j in 0..model.patches.len() {
+            let Some(p) = FoldPolys::along(&scene, j, [1.0, 0.3]) else {
+                continue;
+            };
+            for n in [2, 5, 12] {
+                for a in 0..n {
+                    for b in 0..n {
+                        let w = 1.0 / n as f64;
+                        let lo = [a as f64 * w, b as f64 * w];
+                        let hi = [lo[0] + w, lo[1] + w];
+                        if signs_differ_at_corners(&p, &lo, &hi) {
+                            rejected += 1;
+                            assert!(fold_signs(&p, &lo, &hi, 3).is_none(), "{j} {lo:?} {hi:?}");
+                        } else if fold_signs(&p, &lo, &hi, 3).is_some() {
+                            held += 1;
+                        }
+                    }
+                }
+            }
+            // The box search: every box it returns holds.
+            let c = [Rational::from(1) >> 1u32, Rational::from(1) >> 2u32];
+            let found = first_box_around(&c, &c, |b| {
+                let (lo, hi) = f64_box(b);
+                p.holds(&lo, &hi)
+            });
+            if let Some(b) = found {
+                let (lo, hi) = f64_box(&b);
+                assert!(fold_signs(&p, &lo, &hi, 3).is_some());
+            }
+        }
+        // Both branches are exercised.
+        assert!(rejected > 0 && held > 0, "{rejected} {held}");
+    }
 }
