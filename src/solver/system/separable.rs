@@ -112,7 +112,8 @@ pub fn solve_separable(
 
 /// Where the separable solve left boxes unresolved, the whole system is solved again by the
 /// dense solver on the multiplied-out equations ([`SeparableSystem::dense`]), with the same
-/// options and exclusions, and the answer whose unresolved boxes have the smaller total volume
+/// options (the box budget scaled to the work of [`DENSE_COEFFICIENTS`]) and exclusions, and
+/// the answer whose unresolved boxes have the smaller total volume
 /// is kept (the dense one on a tie). Both are certified answers for the whole domain (`proofs/krawczyk.md`,
 /// `proofs/separable-systems.md` §3), so either may be returned; the dense solver's centre
 /// values and Jacobian of one product polynomial can be tighter than the products of the
@@ -127,7 +128,16 @@ fn settle_densely(
     opts: &SystemOptions,
 ) -> SystemRoots {
     let (equations, _) = system.dense();
-    let dense = super::solve_system_excluding(&equations, &[], domain, exclude, opts);
+    // The budget in work, not boxes: a box of the dense system costs about its coefficient
+    // count, and the large products (a curve against a NURBS patch of high degree) are where
+    // the dense solver rarely settles what the separable one did not; the small ones (lines,
+    // low-degree arcs) keep the whole box budget.
+    let coeffs: usize = equations.iter().map(|p| p.coeffs().len()).sum();
+    let budget = SystemOptions {
+        max_boxes: (opts.max_boxes * DENSE_COEFFICIENTS / coeffs.max(1)).clamp(1, opts.max_boxes),
+        ..opts.clone()
+    };
+    let dense = super::solve_system_excluding(&equations, &[], domain, exclude, &budget);
     // The measure left undecided: the unresolved boxes' total volume.
     let volume = |r: &SystemRoots| -> f64 {
         r.unresolved
@@ -144,6 +154,11 @@ fn settle_densely(
     kept.escalations.merge(&other.escalations);
     kept
 }
+
+/// The coefficient count up to which the dense fallback gets the whole box budget; a larger
+/// system gets the same work, `max_boxes × DENSE_COEFFICIENTS` coefficient visits
+/// ([`settle_densely`]).
+const DENSE_COEFFICIENTS: usize = 128;
 
 impl SeparableSystem<'_> {
     /// The system multiplied out in the joint variables (group 0's, then group 1's): a ratio
