@@ -291,6 +291,17 @@ pub fn layers(
                 }
             }
         }
+        // No sheet of the sample on this patch, and no cell of the patch whose image can hold
+        // the sample's (in front of it, when only the count is asked): no hit to count
+        // (`proofs/ray-count.md`, "Cells").
+        let missed = exclude.is_empty()
+            && scene
+                .leaf_bounds(j)
+                .iter()
+                .all(|c| !c.meets_image(&pb) || (!behind && c.depth[0] > pb.depth[1]));
+        if missed {
+            continue;
+        }
         let (front, back) = hits_on_ray(scene, &ps, j, &exclude, opts, behind)?;
         count += front;
         if let Ok(all) = &mut hits {

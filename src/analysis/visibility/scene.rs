@@ -7,7 +7,10 @@ use crate::model::{Model, PatchAdjacency, WeldTolerance};
 use crate::number::{Number, Rational};
 use crate::surface::Edge;
 
-use crate::bernstein::Poly;
+use crate::bernstein::{Bernstein, Poly};
+use crate::number::{Interval, Precision};
+use std::sync::OnceLock;
+
 /// Image bounds of a patch, outward in `f64`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ImageBounds {
@@ -37,6 +40,23 @@ pub fn ratio_bounds(num: &Poly, den: &Poly) -> [f64; 2] {
     }
     [lo, hi]
 }
+/// [`ratio_bounds`] of interval polynomials of equal degrees; unbounded unless every
+/// coefficient of `den` is proven positive.
+fn interval_ratio_bounds(num: &Bernstein<Interval>, den: &Bernstein<Interval>) -> [f64; 2] {
+    let mut lo = f64::INFINITY;
+    let mut hi = f64::NEG_INFINITY;
+    for (n, d) in num.coeffs().iter().zip(den.coeffs()) {
+        match n.checked_div(d).filter(|_| d.lo() > 0.0) {
+            Some(r) => {
+                lo = lo.min(r.lo());
+                hi = hi.max(r.hi());
+            }
+            None => return [f64::NEG_INFINITY, f64::INFINITY],
+        }
+    }
+    [lo, hi]
+}
+
 /// Both polynomials at their common degrees.
 pub(crate) fn same_degrees(a: &Poly, b: &Poly) -> (Poly, Poly) {
     let deg: Vec<usize> = a
@@ -62,7 +82,13 @@ pub struct Scene {
     pub jacobians: Vec<[[Poly; 2]; 2]>,
     /// Which patch sides are the same edge.
     pub adjacency: PatchAdjacency,
+    /// Per patch, the bounds of the cells of a [`LEAF_GRID`]² grid of its parameter square,
+    /// made on first use ([`Scene::leaf_bounds`]).
+    leaves: Vec<OnceLock<Vec<ImageBounds>>>,
 }
+
+/// Cells per side of the grid of [`Scene::leaf_bounds`].
+pub const LEAF_GRID: usize = 4;
 impl Scene {
     /// Sets up a model and a view.
     ///
@@ -92,12 +118,53 @@ impl Scene {
             .collect();
         let surfaces: Vec<_> = model.patches.iter().map(|p| &p.surface).collect();
         let adjacency = PatchAdjacency::of_patches(&surfaces, weld);
+        let leaves = (0..images.len()).map(|_| OnceLock::new()).collect();
         Ok(Scene {
             projection,
             images,
             bounds,
             jacobians,
             adjacency,
+            leaves,
+        })
+    }
+
+    /// Outward image and depth bounds of patch `j` on each cell `[a/n, (a+1)/n] × [b/n,
+    /// (b+1)/n]` (n = [`LEAF_GRID`]) of its parameter square: every point of the patch lies
+    /// in the bounds of a cell that holds its parameters. A cell whose denominators are not
+    /// proven positive there gets unbounded ranges. Interval restrictions (the cells' ends
+    /// are exact in f64) and the rational convex-hull property; computed once per patch.
+    pub fn leaf_bounds(&self, j: usize) -> &[ImageBounds] {
+        self.leaves[j].get_or_init(|| {
+            let im = &self.images[j];
+            let pair = |n: &Poly, d: &Poly| {
+                let (n, d) = same_degrees(n, d);
+                let c = |p: &Poly| -> Bernstein<Interval> { p.convert(Precision::F64) };
+                (c(&n), c(&d))
+            };
+            let xs = pair(&im.x, &im.q);
+            let ys = pair(&im.y, &im.q);
+            let ds = pair(&im.depth, &im.w);
+            let n = LEAF_GRID;
+            let mut out = Vec::with_capacity(n * n);
+            for a in 0..n {
+                for b in 0..n {
+                    let lo = [a as f64 / n as f64, b as f64 / n as f64];
+                    let hi = [(a + 1) as f64 / n as f64, (b + 1) as f64 / n as f64];
+                    let on = |(num, den): &(Bernstein<Interval>, Bernstein<Interval>)| {
+                        interval_ratio_bounds(
+                            &num.restrict_box_f64(&lo, &hi),
+                            &den.restrict_box_f64(&lo, &hi),
+                        )
+                    };
+                    out.push(ImageBounds {
+                        x: on(&xs),
+                        y: on(&ys),
+                        depth: on(&ds),
+                    });
+                }
+            }
+            out
         })
     }
 
@@ -114,5 +181,61 @@ impl Scene {
             }
         }
         Vec::new()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::Format;
+    use crate::testing::shapes;
+
+    /// Every point of every patch (sampled exactly on a grid finer than the cells, cell
+    /// sides included) lies in the bounds of each cell that holds its parameters; a
+    /// perspective eye and a parallel view, on a torus.
+    #[test]
+    fn every_point_lies_in_its_cells_bounds() {
+        let torus = shapes::torus(&Rational::from(2), &Rational::from(1));
+        let model = Model::from_patches(Format::Json, torus);
+        let views = [
+            View::Direction([7, 2, 4].map(Rational::from)),
+            View::Eye([9, -5, 11].map(Rational::from)),
+        ];
+        for view in &views {
+            let scene = Scene::new(&model, view, WeldTolerance::Exact).unwrap();
+            for j in 0..model.patches.len() {
+                let cells = scene.leaf_bounds(j);
+                let im = &scene.images[j];
+                let k = 3 * LEAF_GRID as i64;
+                for a in 0..=k {
+                    for b in 0..=k {
+                        let uv = [Rational::from((a, k)), Rational::from((b, k))];
+                        let r = |n: &Poly, d: &Poly| Rational::from(&n.eval(&uv) / &d.eval(&uv));
+                        let (x, y, d) = (r(&im.x, &im.q), r(&im.y, &im.q), r(&im.depth, &im.w));
+                        let inside = |v: &Rational, range: [f64; 2]| {
+                            *v >= Rational::from_f64(range[0]).unwrap()
+                                && *v <= Rational::from_f64(range[1]).unwrap()
+                        };
+                        let g = LEAF_GRID as i64;
+                        let mut holding = 0;
+                        for ca in 0..g {
+                            for cb in 0..g {
+                                let holds = |i: i64, c: i64| i * g >= c * k && i * g <= (c + 1) * k;
+                                if !(holds(a, ca) && holds(b, cb)) {
+                                    continue;
+                                }
+                                holding += 1;
+                                let c = cells[(ca * g + cb) as usize];
+                                assert!(
+                                    inside(&x, c.x) && inside(&y, c.y) && inside(&d, c.depth),
+                                    "patch {j} at {a}/{k}, {b}/{k}: cell ({ca}, {cb}) {c:?}"
+                                );
+                            }
+                        }
+                        assert!(holding >= 1);
+                    }
+                }
+            }
+        }
     }
 }
