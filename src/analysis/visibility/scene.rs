@@ -185,24 +185,30 @@ impl Scene {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::model::Format;
     use crate::testing::shapes;
+
+    /// The torus of radii 2 and 1 and its scene in a view (exact weld).
+    pub(crate) fn torus_scene(view: &View) -> (Model, Scene) {
+        let torus = shapes::torus(&Rational::from(2), &Rational::from(1));
+        let model = Model::from_patches(Format::Json, torus);
+        let scene = Scene::new(&model, view, WeldTolerance::Exact).unwrap();
+        (model, scene)
+    }
 
     /// Every point of every patch (sampled exactly on a grid finer than the cells, cell
     /// sides included) lies in the bounds of each cell that holds its parameters; a
     /// perspective eye and a parallel view, on a torus.
     #[test]
     fn every_point_lies_in_its_cells_bounds() {
-        let torus = shapes::torus(&Rational::from(2), &Rational::from(1));
-        let model = Model::from_patches(Format::Json, torus);
         let views = [
             View::Direction([7, 2, 4].map(Rational::from)),
             View::Eye([9, -5, 11].map(Rational::from)),
         ];
         for view in &views {
-            let scene = Scene::new(&model, view, WeldTolerance::Exact).unwrap();
+            let (model, scene) = torus_scene(view);
             for j in 0..model.patches.len() {
                 let cells = scene.leaf_bounds(j);
                 let im = &scene.images[j];

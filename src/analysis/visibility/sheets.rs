@@ -330,18 +330,14 @@ fn signs_differ_at_corners(p: &FoldPolys, lo: &[f64], hi: &[f64]) -> bool {
 mod tests {
     use super::*;
     use crate::analysis::view::View;
-    use crate::model::{Format, Model, WeldTolerance};
-    use crate::testing::shapes;
+    use crate::analysis::visibility::scene::tests::torus_scene;
 
     /// The corner filter rejects only boxes the fold lemma's test rejects too, and the box
     /// search returns only boxes on which its test holds: on every patch of a torus seen from
     /// a generic direction, over boxes of a grid at three scales.
     #[test]
     fn the_corner_filter_and_the_box_search_are_sound() {
-        let torus = shapes::torus(&Rational::from(2), &Rational::from(1));
-        let model = Model::from_patches(Format::Json, torus);
-        let view = View::Direction([7, 2, 4].map(Rational::from));
-        let scene = Scene::new(&model, &view, WeldTolerance::Exact).unwrap();
+        let (model, scene) = torus_scene(&View::Direction([7, 2, 4].map(Rational::from)));
         let (mut rejected, mut held) = (0, 0);
         for j in 0..model.patches.len() {
             let Some(p) = FoldPolys::along(&scene, j, [1.0, 0.3]) else {

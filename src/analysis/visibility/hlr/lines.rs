@@ -544,50 +544,43 @@ pub(super) fn narrow_to_curve(g: &Poly, domain: &DyadicBoxN, axis: usize) -> Dya
     let m = 1 - axis;
     let gi: Bernstein<Interval> = g.convert(Precision::F64);
     let mut keep: Option<(Dyadic, Dyadic)> = None;
-    let mut keep_hull = |lo: Dyadic, hi: Dyadic| {
-        keep = Some(keep.map_or((lo, hi), |(a, b)| (a.min(lo), b.max(hi))));
-    };
     let (l0, h0) = domain[m];
     let exact = |d: Dyadic| {
         let (a, b) = d.to_f64_bounds();
         a == b
     };
-    if exact(l0) && exact(h0) {
-        // The box's ends across the axis are exact in f64: `g` is restricted to the box once
-        // (outward along the axis: a sign on the larger box holds on the box) and each half
-        // is one de Casteljau split of its parent, the polynomial on the real half, whose
-        // ends are the dyadic midpoints.
+    // Where the box's ends across the axis are exact in f64, `g` is restricted to the box
+    // once (outward along the axis: a sign on the larger box holds on the box) and each half
+    // is one de Casteljau split of its parent: the polynomial on the real half, whose ends
+    // are the dyadic midpoints. Otherwise (`None`) each sub-box is restricted on its own.
+    let whole = (exact(l0) && exact(h0)).then(|| {
         let lo: Vec<f64> = domain.iter().map(|d| d.0.to_f64_bounds().0).collect();
         let hi: Vec<f64> = domain.iter().map(|d| d.1.to_f64_bounds().1).collect();
-        let mut stack = vec![(l0, h0, 0u32, gi.restrict_box_f64(&lo, &hi))];
-        while let Some((lo, hi, depth, p)) = stack.pop() {
-            if p.range_sign().is_nonzero() {
-                continue;
+        gi.restrict_box_f64(&lo, &hi)
+    });
+    let mut stack = vec![(l0, h0, 0u32, whole)];
+    while let Some((lo, hi, depth, p)) = stack.pop() {
+        let signed = match &p {
+            Some(p) => p.range_sign().is_nonzero(),
+            None => {
+                let mut d = domain.clone();
+                d[m] = (lo, hi);
+                sign_on(&gi, &d).is_some()
             }
-            match lo.midpoint(hi) {
-                Some(mid) if depth < 6 => {
-                    let (left, right) = p.subdivide_half(m);
-                    stack.push((lo, mid, depth + 1, left));
-                    stack.push((mid, hi, depth + 1, right));
-                }
-                _ => keep_hull(lo, hi),
-            }
+        };
+        if signed {
+            continue;
         }
-    } else {
-        let mut stack = vec![(l0, h0, 0u32)];
-        while let Some((lo, hi, depth)) = stack.pop() {
-            let mut d = domain.clone();
-            d[m] = (lo, hi);
-            if sign_on(&gi, &d).is_some() {
-                continue;
+        match lo.midpoint(hi) {
+            Some(mid) if depth < 6 => {
+                let (left, right) = match p.map(|p| p.subdivide_half(m)) {
+                    Some((l, r)) => (Some(l), Some(r)),
+                    None => (None, None),
+                };
+                stack.push((lo, mid, depth + 1, left));
+                stack.push((mid, hi, depth + 1, right));
             }
-            match lo.midpoint(hi) {
-                Some(mid) if depth < 6 => {
-                    stack.push((lo, mid, depth + 1));
-                    stack.push((mid, hi, depth + 1));
-                }
-                _ => keep_hull(lo, hi),
-            }
+            _ => keep = Some(keep.map_or((lo, hi), |(a, b)| (a.min(lo), b.max(hi)))),
         }
     }
     let mut out = domain.clone();
