@@ -3,6 +3,7 @@
 use super::{Bernstein, BernsteinError};
 use crate::number::{Number, Rational};
 use rug::Integer;
+use std::borrow::Cow;
 
 /// `Π_a C(d_a, i_a)`, exactly.
 fn binomial_weight(degrees: &[usize], index: &[usize]) -> Integer {
@@ -25,14 +26,56 @@ impl<N: Number> Bernstein<N> {
 
     fn zip_with(&self, other: &Self, f: impl Fn(&N, &N) -> N) -> Result<Self, BernsteinError> {
         let d = self.common_degrees(other)?;
-        let (a, b) = (self.elevate_to(&d), other.elevate_to(&d));
+        // Elevated (a copy) only where an operand's degrees are below the common ones.
+        fn at<'p, N: Number>(p: &'p Bernstein<N>, d: &[usize]) -> Cow<'p, Bernstein<N>> {
+            if p.degrees() == d {
+                Cow::Borrowed(p)
+            } else {
+                Cow::Owned(p.elevate_to(d))
+            }
+        }
+        let (a, b) = (at(self, &d), at(other, &d));
         let coeffs = a
             .coeffs
             .iter()
             .zip(&b.coeffs)
             .map(|(x, y)| f(x, y))
             .collect();
-        Ok(Bernstein { coeffs, ..a })
+        Ok(Bernstein {
+            nvars: a.nvars,
+            degrees: a.degrees,
+            coeffs,
+        })
+    }
+
+    /// The product of polynomials in disjoint sets of variables (in every variable one of
+    /// them has degree 0): the tensor product of the coefficients. The general formula's
+    /// binomial weights are then all 1 (`C(d, i) C(0, 0) / C(d, i)`), so this is the same
+    /// polynomial, exact for exact types and an enclosure for enclosure types.
+    fn mul_disjoint(&self, other: &Self) -> Self {
+        let k = self.nvars;
+        let mut degrees = [0; super::MAX_VARS];
+        for (a, d) in degrees.iter_mut().enumerate().take(k) {
+            *d = self.degrees[a] + other.degrees[a];
+        }
+        let template = Bernstein {
+            nvars: k,
+            degrees,
+            coeffs: Vec::<N>::new(),
+        };
+        let len: usize = degrees[..k].iter().map(|d| d + 1).product();
+        let coeffs = (0..len)
+            .map(|flat| {
+                let idx = template.multi_index(flat);
+                let split = |p: &Self| -> usize {
+                    (0..k).fold(0, |acc, a| {
+                        acc * (p.degrees[a] + 1) + if p.degrees[a] == 0 { 0 } else { idx[a] }
+                    })
+                };
+                self.coeffs[split(self)].mul(&other.coeffs[split(other)])
+            })
+            .collect();
+        Bernstein { coeffs, ..template }
     }
 
     /// `self + other`, both elevated to their common degrees.
@@ -72,6 +115,9 @@ impl<N: Number> Bernstein<N> {
     pub fn try_mul(&self, other: &Self) -> Result<Self, BernsteinError> {
         if self.nvars != other.nvars {
             return Err(BernsteinError::Mismatch(self.nvars, other.nvars));
+        }
+        if (0..self.nvars).all(|a| self.degrees[a] == 0 || other.degrees[a] == 0) {
+            return Ok(self.mul_disjoint(other));
         }
         // Exact rationals: one common denominator per operand, then integer convolution (no
         // gcd per term); the result is the same exact polynomial.

@@ -179,6 +179,31 @@ proptest! {
         prop_assert_eq!(lhs, rhs);
         prop_assert!(encloses_i(&pi.deriv(0), &p.deriv(0)));
     }
+
+    #[test]
+    fn products_of_polynomials_in_disjoint_variables(
+        (p, q) in poly_pair(4),
+        zero_in_p in prop::collection::vec(any::<bool>(), 2),
+    ) {
+        // Each variable set to degree 0 in one of the two (the lifted products of the ray
+        // and crossing systems): the tensor product is the general product, exactly, and
+        // encloses it in intervals.
+        let k = p.nvars();
+        let flatten = |r: &Bernstein<Rational>, keep: &dyn Fn(usize) -> bool| {
+            let degs: Vec<usize> = (0..k).map(|a| if keep(a) { r.degrees()[a] } else { 0 }).collect();
+            let n: usize = degs.iter().map(|d| d + 1).product();
+            Bernstein::new(&degs, r.coeffs()[..n].to_vec()).unwrap()
+        };
+        let a = flatten(&p, &|x| !zero_in_p[x]);
+        let b = flatten(&q, &|x| zero_in_p[x]);
+        let fast = &a * &b;
+        prop_assert_eq!(&fast, &a.mul_generic(&b).unwrap());
+        let (ai, bi): (Bernstein<Interval>, Bernstein<Interval>) =
+            (a.convert(Precision::F64), b.convert(Precision::F64));
+        prop_assert!(encloses_i(&(&ai * &bi), &fast));
+        // Sums at equal degrees borrow both operands; at unequal ones one is elevated.
+        prop_assert_eq!(&fast - &fast, fast.scale(&Rational::new()));
+    }
 }
 
 #[test]
