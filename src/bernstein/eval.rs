@@ -56,6 +56,68 @@ impl<N: Number> Bernstein<N> {
     }
 }
 
+impl<N: Number> Bernstein<N> {
+    /// The value at the centre of the unit box, `Σ_I c_I Π_a C(d_a, I_a) / 2^(Σ_a d_a)`: one
+    /// product by an integer weight and one sum per coefficient, no copy
+    /// (`proofs/de-casteljau-enclosure.md`). Exact for exact types, an enclosure for
+    /// enclosure types; [`Bernstein::eval`] at `(1/2, …)` where a weight would not be an
+    /// exact integer below 2⁵³.
+    pub fn value_at_centre(&self) -> N {
+        let degrees = self.degrees();
+        let total: usize = degrees.iter().sum();
+        let prec = self.coeffs[0].precision();
+        let binomials: Vec<Vec<u64>> = degrees
+            .iter()
+            .map(|&d| {
+                let mut row = vec![1u64; d + 1];
+                for i in 1..=d {
+                    row[i] = row[i - 1].saturating_mul((d - i + 1) as u64) / i as u64;
+                }
+                row
+            })
+            .collect();
+        let largest = binomials
+            .iter()
+            .map(|r| r[r.len() / 2] as f64)
+            .product::<f64>();
+        if total > 1000 || largest >= 9.0e15 || degrees.iter().any(|&d| d > 60) {
+            let half =
+                vec![N::from_rational(&crate::number::Rational::from((1, 2)), prec); self.nvars];
+            return self.eval(&half);
+        }
+        let mut sum: Option<N> = None;
+        let mut idx = [0usize; super::MAX_VARS];
+        for c in &self.coeffs {
+            let w: u64 = (0..self.nvars).map(|a| binomials[a][idx[a]]).product();
+            let term = if w == 1 {
+                c.clone()
+            } else {
+                c.mul(&N::from_i64(w as i64, prec))
+            };
+            match &mut sum {
+                Some(acc) => acc.add_assign(&term),
+                slot @ None => *slot = Some(term),
+            }
+            // The next multi-index, last variable fastest.
+            for a in (0..self.nvars).rev() {
+                idx[a] += 1;
+                if idx[a] <= degrees[a] {
+                    break;
+                }
+                idx[a] = 0;
+            }
+        }
+        let scale = N::from_rational(
+            &crate::number::Rational::from((
+                rug::Integer::from(1),
+                rug::Integer::from(1) << total as u32,
+            )),
+            prec,
+        );
+        sum.expect("a polynomial has a coefficient").mul(&scale)
+    }
+}
+
 /// Up to this degree a fibre is evaluated in O(n) operations ([`fiber_value`]); its binomial
 /// coefficients are integers below 2⁵³, exact in every number type.
 const HORNER_MAX_DEGREE: usize = 48;

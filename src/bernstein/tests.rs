@@ -181,6 +181,18 @@ proptest! {
     }
 
     #[test]
+    fn the_value_at_the_centre_is_the_value_at_one_half(p in poly(4, 6)) {
+        // The weighted sum is exact in rationals and encloses in intervals (MPFR and f64).
+        let half = vec![Rational::from((1, 2)); p.nvars()];
+        let exact = p.eval(&half);
+        prop_assert_eq!(&p.value_at_centre(), &exact);
+        let pi: Bernstein<Interval> = p.convert(Precision::F64);
+        prop_assert!(pi.value_at_centre().contains_rational(&exact));
+        let pm: Bernstein<MpInterval> = p.convert(Precision(200));
+        prop_assert!(pm.value_at_centre().contains_rational(&exact));
+    }
+
+    #[test]
     fn products_of_polynomials_in_disjoint_variables(
         (p, q) in poly_pair(4),
         zero_in_p in prop::collection::vec(any::<bool>(), 2),

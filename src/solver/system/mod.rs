@@ -163,8 +163,7 @@ fn krawczyk_image(c: &Matrix, m: &[Vec<Interval>], fy: &[Interval]) -> Vec<Inter
 
 /// The values of polynomials at the centre of their unit box (enclosures).
 fn dense_centre(square: &[Bernstein<Interval>]) -> Vec<Interval> {
-    let y = vec![Interval::point(0.5); square.len()];
-    square.iter().map(|f| f.eval(&y)).collect()
+    square.iter().map(Bernstein::value_at_centre).collect()
 }
 
 /// An enclosure of the Jacobian of polynomials over their unit box: `∂f_i/∂x_j` by the hull of

@@ -551,11 +551,7 @@ impl SquareSystem for Solver<'_, '_> {
     fn centre(&self, local: &Self::Local) -> Vec<Interval> {
         let values: Vec<Vec<Interval>> = local
             .iter()
-            .enumerate()
-            .map(|(g, part)| {
-                let y = vec![Interval::point(0.5); self.dims[g]];
-                part.polys.iter().map(|p| p.eval(&y)).collect()
-            })
+            .map(|part| part.polys.iter().map(Bernstein::value_at_centre).collect())
             .collect();
         self.system
             .equations
