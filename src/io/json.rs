@@ -51,6 +51,7 @@ impl Ctx<'_> {
             NurbsError::PointCount { .. } => "points".to_string(),
             NurbsError::NonPositiveWeight { index, .. } => format!("weights[{index}]"),
             NurbsError::DegreeTooHigh(_) => "degree".to_string(),
+            NurbsError::Range { .. } => "range".to_string(),
         };
         self.err(&field, e.to_string())
     }

@@ -3,12 +3,15 @@
 //! All coordinates are exact rationals, as the model file states them; [`float_eval`] is the one
 //! f64 evaluator of a patch, with its rounding bound.
 
+mod curve;
 pub mod float_eval;
+mod knots;
 mod mesh;
 pub(crate) mod normal;
 mod nurbs;
 mod patch;
 
+pub use curve::{ModelCurve, NurbsCurve, ParameterCurve, RationalCurve};
 pub use float_eval::{eval_f64, DrawPatch, Evaluator};
 pub use mesh::Mesh;
 pub use nurbs::{NurbsError, NurbsSurface};

@@ -1,5 +1,6 @@
 //! NURBS surfaces and their exact split into rational Bézier patches.
 
+use super::knots::{bezier_segments, de_boor};
 use super::patch::first_nonpositive;
 use super::{Point3, RationalPatch};
 use crate::number::Rational;
@@ -63,6 +64,18 @@ pub enum NurbsError {
         /// Value.
         value: String,
     },
+    /// A curve's parameter range is empty or not inside its knot domain.
+    #[error("the parameter range [{start}, {end}] is empty or not inside the knot domain [{domain_start}, {domain_end}]")]
+    Range {
+        /// Range start.
+        start: String,
+        /// Range end.
+        end: String,
+        /// Domain start.
+        domain_start: String,
+        /// Domain end.
+        domain_end: String,
+    },
     /// Degree above the supported maximum.
     #[error("degree {0} is above the supported maximum {max}", max = super::patch::MAX_PATCH_DEGREE)]
     DegreeTooHigh(usize),
@@ -81,7 +94,7 @@ pub struct NurbsSurface {
 /// A homogeneous control point `[wx, wy, wz, w]`.
 type Hom = [Rational; 4];
 
-fn check_knots(
+pub(super) fn check_knots(
     dir: &'static str,
     degree: usize,
     points: usize,
@@ -118,57 +131,6 @@ fn check_knots(
         return Err(NurbsError::EmptyDomain { dir });
     }
     Ok(())
-}
-
-/// Inserts `u` once into a curve with homogeneous points (Boehm's algorithm, exact).
-/// `knots` has `points.len() + p + 1` entries; `u` must lie in the domain [t_p, t_n].
-fn insert_knot(p: usize, knots: &mut Vec<Rational>, points: &mut Vec<Hom>, u: &Rational) {
-    // The span k with t_k <= u < t_{k+1}, k in [p, n-1]; at the domain end use the last span.
-    let n = points.len();
-    let mut k = p;
-    while k + 1 < n && knots[k + 1] <= *u {
-        k += 1;
-    }
-    // Only Q_{k-p+1..=k} are new: Q_i = α_i P_i + (1 − α_i) P_{i−1},
-    // α_i = (u − t_i) / (t_{i+p} − t_i). The rest of the polygon is moved, not copied.
-    let fresh: Vec<Hom> = (k + 1 - p..=k)
-        .map(|i| {
-            let den = Rational::from(&knots[i + p] - &knots[i]);
-            let alpha = Rational::from(u - &knots[i]) / den;
-            let beta = Rational::from(1 - &alpha);
-            std::array::from_fn(|c| {
-                Rational::from(&alpha * &points[i][c]) + Rational::from(&beta * &points[i - 1][c])
-            })
-        })
-        .collect();
-    points.splice(k + 1 - p..k, fresh);
-    knots.insert(k + 1, u.clone());
-}
-
-/// Splits a curve into Bézier segments: for each span [a, b] of the domain with a < b, the
-/// p + 1 homogeneous Bézier points. Every domain knot is raised to multiplicity at least p
-/// by exact insertion; then the segment on [t_k, t_{k+1}] has control points P_{k-p..=k}
-/// (the blossom argument in `proofs/knot-insertion.md`).
-fn bezier_segments(p: usize, knots: &[Rational], points: &[Hom]) -> Vec<Vec<Hom>> {
-    let mut knots = knots.to_vec();
-    let mut points = points.to_vec();
-    let n = points.len();
-    let (start, end) = (knots[p].clone(), knots[n].clone());
-    let mut values: Vec<Rational> = knots[p..=n].to_vec();
-    values.dedup();
-    for u in &values {
-        let mult = knots.iter().filter(|t| *t == u).count();
-        for _ in mult..p {
-            insert_knot(p, &mut knots, &mut points, u);
-        }
-    }
-    let mut segments = Vec::new();
-    for k in p..points.len() {
-        if knots[k] < knots[k + 1] && knots[k] >= start && knots[k + 1] <= end {
-            segments.push(points[k - p..=k].to_vec());
-        }
-    }
-    segments
 }
 
 impl NurbsSurface {
@@ -248,6 +210,7 @@ impl NurbsSurface {
     pub fn to_bezier(&self) -> Vec<((usize, usize), RationalPatch)> {
         let [p, q] = self.degree;
         let [nu, nv] = self.counts;
+        let dom = self.domain();
         // Split along v: each row i (fixed u index) is a curve in v.
         let rows: Vec<Vec<Vec<Hom>>> = (0..nu)
             .map(|i| {
@@ -255,7 +218,11 @@ impl NurbsSurface {
                     q,
                     &self.knots[1],
                     &(0..nv).map(|j| self.hom(i, j)).collect::<Vec<_>>(),
+                    [&dom[1][0], &dom[1][1]],
                 )
+                .into_iter()
+                .map(|(_, segment)| segment)
+                .collect()
             })
             .collect();
         let segs_v = rows.first().map_or(0, |r| r.len());
@@ -266,7 +233,10 @@ impl NurbsSurface {
             let cols: Vec<Vec<Vec<Hom>>> = (0..=q)
                 .map(|jj| {
                     let curve: Vec<Hom> = rows.iter().map(|row| row[sv][jj].clone()).collect();
-                    bezier_segments(p, &self.knots[0], &curve)
+                    bezier_segments(p, &self.knots[0], &curve, [&dom[0][0], &dom[0][1]])
+                        .into_iter()
+                        .map(|(_, segment)| segment)
+                        .collect()
                 })
                 .collect();
             columns.push(cols);
@@ -317,32 +287,6 @@ impl NurbsSurface {
         let h = de_boor(p, &self.knots[0], &rows, u);
         [0, 1, 2].map(|c| Rational::from(&h[c] / &h[3]))
     }
-}
-
-/// de Boor's algorithm on homogeneous points (exact).
-fn de_boor(p: usize, knots: &[Rational], points: &[Hom], u: &Rational) -> Hom {
-    let n = points.len();
-    let mut k = p;
-    while k + 1 < n && knots[k + 1] <= *u {
-        k += 1;
-    }
-    // At the end of the domain the span found may be empty: use the last nonempty one.
-    while k > p && knots[k] == knots[k + 1] {
-        k -= 1;
-    }
-    let mut d: Vec<Hom> = (0..=p).map(|j| points[j + k - p].clone()).collect();
-    for r in 1..=p {
-        for j in (r..=p).rev() {
-            let i = j + k - p;
-            let alpha =
-                Rational::from(u - &knots[i]) / Rational::from(&knots[i + p + 1 - r] - &knots[i]);
-            let beta = Rational::from(1 - &alpha);
-            d[j] = std::array::from_fn(|c| {
-                Rational::from(&alpha * &d[j][c]) + Rational::from(&beta * &d[j - 1][c])
-            });
-        }
-    }
-    d[p].clone()
 }
 
 #[cfg(test)]
