@@ -60,6 +60,19 @@ pub(crate) fn load(
 ) -> Result<Loaded, CliError> {
     refuse_overwrite(run.output.iter().chain(other_outputs), run.force)?;
     let model = read_model(path).map_err(|e| CliError::input(e.to_string()))?;
+    // What the file holds that the analysis does not honour (trims, skipped surfaces) is
+    // said on stderr, so that a drawing of untrimmed faces is never taken for the part.
+    const SHOWN: usize = 8;
+    for w in model.warnings.iter().take(SHOWN) {
+        eprintln!("limn: warning: {}: {w}", path.display());
+    }
+    if model.warnings.len() > SHOWN {
+        eprintln!(
+            "limn: warning: {}: {} more warnings (`limn info` lists them)",
+            path.display(),
+            model.warnings.len() - SHOWN
+        );
+    }
     if model.patches.is_empty() {
         let faces: usize = model.meshes.iter().map(|m| m.faces.len()).sum();
         return Err(CliError::input(if faces > 0 {

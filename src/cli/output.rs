@@ -176,6 +176,37 @@ pub(crate) fn print_info(
             )?,
         }
     }
+    if let Some(f) = &info.faces {
+        writeln!(
+            out,
+            "faces: {} trimmed ({} with the domain as outer loop), {} surfaces untrimmed; loops: {} ({} inner), {} curves, {} bridges ({} along collapsed sides, largest straight gap {:.3e})",
+            f.faces, f.domain_outer_loops, f.untrimmed_surfaces, f.loops, f.inner_loops, f.curves, f.bridges, f.side_bridges, f.largest_gap
+        )?;
+        writeln!(
+            out,
+            "loop orientation (proven): {} counter-clockwise, {} clockwise, {} undecided; {} against the usual convention (outer counter-clockwise, inner clockwise)",
+            f.counter_clockwise, f.clockwise, f.undecided, f.unusual_orientation
+        )?;
+    }
+    if let Some(b) = &info.brep {
+        writeln!(
+            out,
+            "B-rep: {} shells, {} faces, {} loops ({} inner), {} edges ({} shared, {} boundary, {} non-manifold), {} vertices",
+            b.shells, b.faces, b.loops, b.inner_loops, b.edges, b.shared_edges, b.boundary_edges, b.nonmanifold_edges, b.vertices
+        )?;
+        match b.genus {
+            Some(g) => writeln!(
+                out,
+                "B-rep closed: yes, Euler-Poincaré characteristic {}, genus {}",
+                b.euler_characteristic, g
+            )?,
+            None => writeln!(
+                out,
+                "B-rep closed: no (Euler-Poincaré characteristic {})",
+                b.euler_characteristic
+            )?,
+        }
+    }
     for (i, m) in info.meshes.iter().enumerate() {
         writeln!(out, "mesh {i}: {} vertices, {} edges, {} faces ({}), {} boundary edges, {} non-manifold, {} components", m.vertices, m.edges, m.faces, if m.triangles { "triangles" } else { "polygons" }, m.boundary_edges, m.nonmanifold_edges, m.components)?;
         match m.genus {

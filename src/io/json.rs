@@ -209,6 +209,7 @@ pub(super) fn read(name: &str, text: &str) -> Result<Model, ReadError> {
                         surface: index,
                         entity: None,
                         span: None,
+                        parameters: None,
                     },
                 });
             }
@@ -236,14 +237,11 @@ pub(super) fn read(name: &str, text: &str) -> Result<Model, ReadError> {
                 let s = NurbsSurface::new(degree, ku, kv, [nu, nv], points, weights)
                     .map_err(|e| cx.nurbs_err(&e))?;
                 super::count_bezier_points(&mut bezier_points, &s).map_err(|m| cx.err("", m))?;
+                let spans = s.spans();
                 for (span, piece) in s.to_bezier() {
                     model.patches.push(ModelPatch {
                         surface: piece,
-                        source: PatchSource {
-                            surface: index,
-                            entity: None,
-                            span: Some(span),
-                        },
+                        source: PatchSource::of_span(index, None, span, &spans),
                     });
                 }
             }

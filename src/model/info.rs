@@ -1,6 +1,6 @@
 //! A summary of a model: what `limn info` prints.
 
-use super::{MeshTopology, Model, PatchTopology, Warning, WeldTolerance};
+use super::{BrepSummary, MeshTopology, Model, Orientation, PatchTopology, Warning, WeldTolerance};
 use crate::number::Number;
 use std::collections::BTreeMap;
 
@@ -35,6 +35,10 @@ pub struct ModelInfo {
     pub topology: Option<PatchTopology>,
     /// Topology of each mesh.
     pub meshes: Vec<MeshTopology>,
+    /// The trimmed faces read (absent when the file states none).
+    pub faces: Option<FacesSummary>,
+    /// The topology of the file's B-rep (absent when it states none).
+    pub brep: Option<BrepSummary>,
     /// What was read but not honoured.
     pub warnings: Vec<Warning>,
 }
@@ -65,8 +69,93 @@ impl ModelInfo {
             bounding_box,
             topology: (!model.patches.is_empty()).then(|| PatchTopology::of_model(model, weld)),
             meshes: model.meshes.iter().map(MeshTopology::of_mesh).collect(),
+            faces: (!model.faces.is_empty()).then(|| FacesSummary::of(model)),
+            brep: model.brep.as_ref().map(super::Brep::summary),
             warnings: model.warnings.clone(),
         }
+    }
+}
+
+/// The trimmed faces of a model, counted.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct FacesSummary {
+    /// Faces with trimming loops (a face whose outer loop is the domain's boundary counts).
+    pub faces: usize,
+    /// Surfaces that no face names, used whole.
+    pub untrimmed_surfaces: usize,
+    /// Loops, outer and inner.
+    pub loops: usize,
+    /// Inner loops (holes).
+    pub inner_loops: usize,
+    /// Faces whose outer loop is the boundary of the surface's domain.
+    pub domain_outer_loops: usize,
+    /// Trimming curves (exact rational Bézier pieces) from the file.
+    pub curves: usize,
+    /// Straight bridges limn added across gaps between consecutive curves.
+    pub bridges: usize,
+    /// Of the gaps, those bridged along a side of the domain the surface collapses to a point.
+    pub side_bridges: usize,
+    /// The largest gap bridged straight (max norm in the parameter plane).
+    pub largest_gap: f64,
+    /// Loops by proven orientation: counter-clockwise, clockwise, undecided.
+    pub counter_clockwise: usize,
+    /// Clockwise loops.
+    pub clockwise: usize,
+    /// Loops whose orientation was not decided.
+    pub undecided: usize,
+    /// Outer loops that are clockwise or inner loops that are counter-clockwise (the usual
+    /// convention is the reverse; the region does not depend on it).
+    pub unusual_orientation: usize,
+}
+
+impl FacesSummary {
+    /// Counts the faces of a model.
+    pub fn of(model: &Model) -> FacesSummary {
+        let named: std::collections::BTreeSet<usize> =
+            model.faces.iter().map(|f| f.surface).collect();
+        let mut s = FacesSummary {
+            faces: model.faces.len(),
+            untrimmed_surfaces: model.surfaces.saturating_sub(named.len()),
+            loops: 0,
+            inner_loops: 0,
+            domain_outer_loops: 0,
+            curves: 0,
+            bridges: 0,
+            side_bridges: 0,
+            largest_gap: 0.0,
+            counter_clockwise: 0,
+            clockwise: 0,
+            undecided: 0,
+            unusual_orientation: 0,
+        };
+        for f in &model.faces {
+            if f.outer.is_none() {
+                s.domain_outer_loops += 1;
+            }
+            s.inner_loops += f.inner.len();
+            for (k, l) in f.loops().enumerate() {
+                let outer = k == 0 && f.outer.is_some();
+                s.loops += 1;
+                s.bridges += l.bridges();
+                s.curves += l.pieces.len() - l.bridges();
+                s.side_bridges += l.side_bridges;
+                s.largest_gap = s.largest_gap.max(l.largest_gap);
+                match l.orientation {
+                    Orientation::CounterClockwise => s.counter_clockwise += 1,
+                    Orientation::Clockwise => s.clockwise += 1,
+                    Orientation::Undecided => s.undecided += 1,
+                }
+                let usual = if outer {
+                    Orientation::CounterClockwise
+                } else {
+                    Orientation::Clockwise
+                };
+                if l.orientation != usual && l.orientation != Orientation::Undecided {
+                    s.unusual_orientation += 1;
+                }
+            }
+        }
+        s
     }
 }
 

@@ -1,9 +1,15 @@
 //! Layer 3: models (patches and meshes read from one file) and their topology.
 
+mod brep;
+mod face;
 mod info;
 mod topology;
 
-pub use info::{default_weld, BoundingBox, ModelInfo};
+pub use brep::{Brep, BrepEdge, BrepSummary};
+pub use face::{
+    in_domain, orientation, Closing, Face, InDomain, LoopError, Orientation, TrimLoop, TrimPiece,
+};
+pub use info::{default_weld, BoundingBox, FacesSummary, ModelInfo};
 
 pub use topology::{MeshTopology, PatchAdjacency, PatchTopology, SideUse, WeldTolerance};
 
@@ -21,6 +27,28 @@ pub struct PatchSource {
     /// For a NURBS surface split into Bézier pieces, the knot span (u, v) of this piece.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub span: Option<(usize, usize)>,
+    /// For a NURBS piece, its box `[[u0, u1], [v0, v1]]` in the surface's parameter plane (the
+    /// plane of the trimming loops); the patch's `[0,1]²` maps onto it affinely.
+    #[serde(skip)]
+    pub parameters: Option<[[Rational; 2]; 2]>,
+}
+
+impl PatchSource {
+    /// The source of piece `span` of a NURBS surface whose spans are `spans`
+    /// ([`crate::surface::NurbsSurface::spans`]).
+    pub fn of_span(
+        surface: usize,
+        entity: Option<usize>,
+        span: (usize, usize),
+        spans: &[Vec<[Rational; 2]>; 2],
+    ) -> PatchSource {
+        PatchSource {
+            surface,
+            entity,
+            span: Some(span),
+            parameters: Some([spans[0][span.0].clone(), spans[1][span.1].clone()]),
+        }
+    }
 }
 
 /// One Bézier patch of a model.
@@ -79,6 +107,11 @@ pub struct Model {
     pub surfaces: usize,
     /// A welding tolerance the file suggests (IGES: the global minimum resolution).
     pub suggested_weld: Option<Rational>,
+    /// The trimmed faces the file states (IGES 144, 510). A surface no face names is used
+    /// whole; a surface with faces is the union of their regions.
+    pub faces: Vec<Face>,
+    /// The B-rep topology the file states, if any (IGES 186/514/510/508/504/502).
+    pub brep: Option<Brep>,
 }
 
 impl Model {
@@ -96,6 +129,7 @@ impl Model {
                         surface: i,
                         entity: None,
                         span: None,
+                        parameters: None,
                     },
                 })
                 .collect(),
@@ -103,6 +137,8 @@ impl Model {
             warnings: Vec::new(),
             surfaces,
             suggested_weld: None,
+            faces: Vec::new(),
+            brep: None,
         }
     }
 

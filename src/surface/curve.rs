@@ -9,6 +9,24 @@ use super::nurbs::{check_knots, NurbsError};
 use crate::number::Rational;
 use std::cmp::Ordering;
 
+/// The homogeneous point `[w p, w]` of the affine point `p` (`K - 1` coordinates) with weight `w`.
+fn lift<const K: usize>(p: &[Rational], w: &Rational) -> [Rational; K] {
+    std::array::from_fn(|c| {
+        if c + 1 == K {
+            w.clone()
+        } else {
+            Rational::from(&p[c] * w)
+        }
+    })
+}
+
+/// The affine point of a homogeneous one (its weight is positive).
+fn project<const K: usize>(h: &[Rational; K]) -> Vec<Rational> {
+    (0..K - 1)
+        .map(|c| Rational::from(&h[c] / &h[K - 1]))
+        .collect()
+}
+
 /// A rational Bézier curve on `[0, 1]`: `C(t) = Σ w_i P_i B_i(t) / Σ w_i B_i(t)`, stored as
 /// its homogeneous control points `[w_i P_i, w_i]` with every `w_i > 0`.
 #[derive(Clone, Debug, PartialEq)]
@@ -38,15 +56,7 @@ impl<const K: usize> RationalCurve<K> {
         let hom = points
             .iter()
             .zip(weights)
-            .map(|(p, w)| {
-                std::array::from_fn(|c| {
-                    if c + 1 == K {
-                        w.clone()
-                    } else {
-                        Rational::from(&p[c] * w)
-                    }
-                })
-            })
+            .map(|(p, w)| lift(p, w))
             .collect();
         Self::from_homogeneous(hom)
     }
@@ -78,10 +88,7 @@ impl<const K: usize> RationalCurve<K> {
 
     /// Control point `i` in affine coordinates (`K - 1` entries).
     pub fn point(&self, i: usize) -> Vec<Rational> {
-        let h = &self.hom[i];
-        (0..K - 1)
-            .map(|c| Rational::from(&h[c] / &h[K - 1]))
-            .collect()
+        project(&self.hom[i])
     }
 
     /// The affine control points.
@@ -110,10 +117,7 @@ impl<const K: usize> RationalCurve<K> {
                 });
             }
         }
-        let h = &d[0];
-        (0..K - 1)
-            .map(|c| Rational::from(&h[c] / &h[K - 1]))
-            .collect()
+        project(&d[0])
     }
 
     /// The same curve traversed backwards (`t → 1 − t`).
@@ -132,18 +136,7 @@ impl<const K: usize> RationalCurve<K> {
         let hom = self
             .hom
             .iter()
-            .map(|h| {
-                let w = &h[K - 1];
-                let p: Vec<Rational> = (0..K - 1).map(|c| Rational::from(&h[c] / w)).collect();
-                let q = f(&p);
-                std::array::from_fn(|c| {
-                    if c + 1 == L {
-                        w.clone()
-                    } else {
-                        Rational::from(&q[c] * w)
-                    }
-                })
-            })
+            .map(|h| lift(&f(&project(h)), &h[K - 1]))
             .collect();
         RationalCurve { hom }
     }
@@ -187,10 +180,10 @@ impl<const K: usize> NurbsCurve<K> {
         let range = range.unwrap_or_else(|| domain.clone());
         if range[0] >= range[1] || range[0] < domain[0] || range[1] > domain[1] {
             return Err(NurbsError::Range {
-                start: range[0].to_string(),
-                end: range[1].to_string(),
-                domain_start: domain[0].to_string(),
-                domain_end: domain[1].to_string(),
+                start: range[0].to_f64().to_string(),
+                end: range[1].to_f64().to_string(),
+                domain_start: domain[0].to_f64().to_string(),
+                domain_end: domain[1].to_f64().to_string(),
             });
         }
         let curve = RationalCurve::<K>::new(points, weights).ok_or(NurbsError::PointCount {
@@ -241,10 +234,7 @@ impl<const K: usize> NurbsCurve<K> {
 
     /// `C(t)` by de Boor's algorithm, exact, for `t` in the knot domain.
     pub fn eval(&self, t: &Rational) -> Vec<Rational> {
-        let h = de_boor(self.degree, &self.knots, &self.hom, t);
-        (0..K - 1)
-            .map(|c| Rational::from(&h[c] / &h[K - 1]))
-            .collect()
+        project(&de_boor(self.degree, &self.knots, &self.hom, t))
     }
 }
 

@@ -192,6 +192,19 @@ impl NurbsSurface {
         })
     }
 
+    /// The nonempty knot spans of the domain along u and along v, in order: the Bézier piece
+    /// with span indices (iu, iv) of [`Self::to_bezier`] is the surface on
+    /// `spans[0][iu] × spans[1][iv]`.
+    pub fn spans(&self) -> [Vec<[Rational; 2]>; 2] {
+        [0, 1].map(|d| {
+            let (p, n, k) = (self.degree[d], self.counts[d], &self.knots[d]);
+            (p..n)
+                .filter(|&i| k[i] < k[i + 1])
+                .map(|i| [k[i].clone(), k[i + 1].clone()])
+                .collect()
+        })
+    }
+
     fn hom(&self, i: usize, j: usize) -> Hom {
         let k = i * self.counts[1] + j;
         let w = &self.weights[k];

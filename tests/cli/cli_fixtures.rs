@@ -69,11 +69,14 @@ fn iges_torus_is_closed_with_genus_one_once_welded() {
     assert_eq!(topo(&v, "euler_characteristic"), 0);
     assert_eq!(topo(&v, "genus"), 1);
     assert_eq!(v["topology"]["weld"]["mode"], "absolute");
-    // The trim of the underlying surface is reported, not silently dropped.
+    // The trim of the underlying surface (across the seam of the closed torus, which limn
+    // does not read yet) is reported, not silently dropped.
     let w = v["warnings"].as_array().unwrap();
-    assert!(w
-        .iter()
-        .any(|w| w["message"].as_str().unwrap().contains("not honoured")));
+    assert!(w.iter().any(|w| {
+        let m = w["message"].as_str().unwrap();
+        m.contains("used untrimmed") && m.contains("closed surface")
+    }));
+    assert!(v["faces"].is_null());
     // The file repeats its seam control points digit for digit: exact matching closes it too,
     // and nothing needed welding.
     assert_eq!(v["topology"]["max_weld_gap"], 0.0);

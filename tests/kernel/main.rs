@@ -10,3 +10,4 @@ mod separable;
 mod space_curve;
 mod surface;
 mod system;
+mod trims;

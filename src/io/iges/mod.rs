@@ -1,18 +1,25 @@
-//! IGES 5.3: rational B-spline surfaces (entity 128), with their transformation matrices
-//! (entity 124) applied exactly. Trimmed surfaces (142/143/144) and B-rep faces (510) are read
-//! for their underlying 128 surfaces and the trim that is not honoured is reported as a
-//! warning; other surface types are reported and skipped, never dropped silently.
+//! IGES 5.3: rational B-spline surfaces (entity 128) with their transformation matrices (124)
+//! applied exactly ([`surface`]); trimmed surfaces (144, 142) and B-rep faces (186, 514, 510,
+//! 508, 504, 502) as faces with exact trimming loops in the surfaces' parameter planes
+//! ([`trim`], [`brep`]), from the curves of [`curve`]. A face whose loops use curves limn does
+//! not read yet, or have model-space curves only, is used untrimmed and reported; other surface
+//! types are reported and skipped, never dropped silently.
 //!
 //! Records are 80 columns; column 73 names the section (S, G, D, P, T). Parameter data is in
 //! columns 1-64 of the P records. Numbers may use Fortran `D` exponents; strings are Hollerith
 //! (`5HHello`).
 
+mod brep;
+mod curve;
+mod surface;
+mod trim;
+
 use super::{Place, ReadError};
-use crate::model::{Format, Model, ModelPatch, PatchSource, Warning};
+use crate::model::{in_domain, Face, Format, InDomain, Model, ModelPatch, PatchSource, Warning};
 use crate::number::{parse_exact, Rational};
-use crate::surface::{NurbsError, NurbsSurface, Point3, RationalPatch};
-use std::cmp::Ordering;
+use crate::surface::RationalPatch;
 use std::collections::BTreeMap;
+use surface::SurfaceInfo;
 
 /// One directory entry (two D records).
 #[derive(Clone, Debug)]
@@ -23,6 +30,12 @@ struct DirEntry {
     param_lines: usize,
     form: i64,
 }
+
+/// The largest gap between consecutive trimming curves that is bridged, relative to the
+/// larger side of the surface's parameter domain; also how far a trimming curve may leave the
+/// domain. Files write each curve's end points separately in decimal, so consecutive curves
+/// meet only to their written precision.
+pub(super) const PARAMETER_GAP: (i64, i64) = (1, 1_000_000);
 
 /// An exact affine map x -> R x + T: (R, T).
 type Affine = ([[Rational; 3]; 3], [Rational; 3]);
@@ -388,162 +401,128 @@ impl Reader<'_> {
         Ok(total)
     }
 
-    fn read_surface(&mut self, de: usize) -> Result<Vec<BezierPiece>, ReadError> {
-        let f = self.fields(de)?;
-        let num = |i: usize, what: &str| -> Result<Rational, ReadError> {
-            let s = f.get(i).ok_or_else(|| {
-                self.entity_err(
-                    de,
-                    format!("{what}: the parameter data ends early ({} fields)", f.len()),
-                )
-            })?;
-            parse_exact(s).map_err(|e| self.entity_err(de, format!("{what}: {e}")))
-        };
-        let int = |i: usize, what: &str| -> Result<usize, ReadError> {
-            let q = num(i, what)?;
-            if !q.is_integer() || !(0..=100_000).contains(&q) {
-                let text = f[i].trim();
-                return Err(self.entity_err(
-                    de,
-                    format!("{what}: {text:?} is not a count (a whole number 0..=100000)"),
-                ));
-            }
-            Ok(q.numer().to_usize().unwrap_or(0))
-        };
-        let (k1, k2, m1, m2) = (int(0, "K1")?, int(1, "K2")?, int(2, "M1")?, int(3, "M2")?);
-        let (nu, nv) = (k1 + 1, k2 + 1);
-        if nu.checked_mul(nv).is_none_or(|n| n > 10_000_000) {
-            return Err(self.entity_err(de, "too many control points"));
-        }
-        let mut i = 9;
-        let mut take = |n: usize, what: &str| -> Result<Vec<Rational>, ReadError> {
-            let v = (i..i + n)
-                .map(|k| num(k, &format!("{what} {}", k - i + 1)))
-                .collect();
-            i += n;
-            v
-        };
-        let ku = take(nu + m1 + 1, "u knot")?;
-        let kv = take(nv + m2 + 1, "v knot")?;
-        let w = take(nu * nv, "weight")?;
-        let c = take(3 * nu * nv, "control point coordinate")?;
-        let range = take(4, "parameter range value")?;
-        // The file orders points with the u index fastest; limn's order is i * count_v + j.
-        let mut points: Vec<Point3> = Vec::with_capacity(nu * nv);
-        let mut weights = Vec::with_capacity(nu * nv);
-        let map = self.transform(de)?;
-        for ii in 0..nu {
-            for jj in 0..nv {
-                let k = jj * nu + ii;
-                let p = [c[3 * k].clone(), c[3 * k + 1].clone(), c[3 * k + 2].clone()];
-                let p = match &map {
-                    None => p,
-                    Some((r, t)) => std::array::from_fn(|a| {
-                        (0..3)
-                            .map(|b| Rational::from(&r[a][b] * &p[b]))
-                            .sum::<Rational>()
-                            + &t[a]
-                    }),
-                };
-                points.push(p);
-                weights.push(w[k].clone());
-            }
-        }
-        // Weights and knots are named as the file counts them (1-based, u fastest).
-        if let Some((k, x)) = w
-            .iter()
-            .enumerate()
-            .find(|(_, x)| x.cmp0() != Ordering::Greater)
-        {
-            return Err(self.entity_err(
+    /// Field `i` of an entity's fields `f` as an exact number.
+    fn number(&self, de: usize, f: &[String], i: usize, what: &str) -> Result<Rational, ReadError> {
+        let s = f.get(i).ok_or_else(|| {
+            self.entity_err(
+                de,
+                format!("{what}: the parameter data ends early ({} fields)", f.len()),
+            )
+        })?;
+        parse_exact(s).map_err(|e| self.entity_err(de, format!("{what}: {e}")))
+    }
+
+    /// `n` numbers from field `*i` on, named `what 1`, `what 2`, …; `*i` moves past them.
+    fn numbers(
+        &self,
+        de: usize,
+        f: &[String],
+        i: &mut usize,
+        n: usize,
+        what: &str,
+    ) -> Result<Vec<Rational>, ReadError> {
+        let v = (*i..*i + n)
+            .map(|k| self.number(de, f, k, &format!("{what} {}", k - *i + 1)))
+            .collect();
+        *i += n;
+        v
+    }
+
+    /// Field `i` as a count, a whole number in `0..=max`.
+    fn count(
+        &self,
+        de: usize,
+        f: &[String],
+        i: usize,
+        what: &str,
+        max: usize,
+    ) -> Result<usize, ReadError> {
+        let q = self.number(de, f, i, what)?;
+        match q.is_integer().then(|| q.numer().to_usize()).flatten() {
+            Some(n) if n <= max => Ok(n),
+            _ => Err(self.entity_err(
                 de,
                 format!(
-                    "weight {}: {x} is not positive (weights must be positive)",
-                    k + 1
+                    "{what}: {:?} is not a count (a whole number 0..={max})",
+                    f[i].trim()
                 ),
-            ));
+            )),
         }
-        let surface =
-            NurbsSurface::new([m1, m2], ku, kv, [nu, nv], points, weights).map_err(|e| {
-                let msg = match &e {
-                    NurbsError::Decreasing { dir, index, value } => {
-                        format!(
-                            "{dir} knot {}: {value} is less than the knot before it",
-                            index + 1
-                        )
-                    }
-                    _ => e.to_string(),
-                };
-                self.entity_err(de, msg)
-            })?;
-        let dom = surface.domain();
-        if range[0] != dom[0][0]
-            || range[1] != dom[0][1]
-            || range[2] != dom[1][0]
-            || range[3] != dom[1][1]
-        {
-            self.warn(
+    }
+
+    /// Field `i` as a pointer to an existing directory entry (`None` for 0 when `optional`).
+    fn pointer_at(
+        &self,
+        de: usize,
+        f: &[String],
+        i: usize,
+        what: &str,
+        optional: bool,
+    ) -> Result<Option<usize>, ReadError> {
+        let v = f.get(i).ok_or_else(|| {
+            self.entity_err(
                 de,
-                format!(
-                    "the stated parameter range [{}, {}] x [{}, {}] differs from the knot domain [{}, {}] x [{}, {}]; the knot domain is used",
-                    range[0].to_f64(), range[1].to_f64(), range[2].to_f64(), range[3].to_f64(),
-                    dom[0][0].to_f64(), dom[0][1].to_f64(), dom[1][0].to_f64(), dom[1][1].to_f64()
-                ),
-            );
+                format!("{what}: the parameter data ends early ({} fields)", f.len()),
+            )
+        })?;
+        if optional && matches!(v.trim(), "" | "0") {
+            return Ok(None);
         }
-        super::count_bezier_points(&mut self.bezier_points, &surface)
-            .map_err(|m| self.entity_err(de, m))?;
-        Ok(surface.to_bezier())
+        self.pointer(de, v, what).map(Some)
+    }
+
+    /// Entity type of a directory entry (which exists).
+    fn kind(&self, de: usize) -> i64 {
+        self.dir[&de].kind
+    }
+
+    /// An error at `from` unless the entity `p` that its field `what` points to is of type
+    /// `kind` (named `name`).
+    fn expect_kind(
+        &self,
+        from: usize,
+        p: usize,
+        kind: i64,
+        what: &str,
+        name: &str,
+    ) -> Result<(), ReadError> {
+        if self.kind(p) == kind {
+            return Ok(());
+        }
+        Err(self.entity_err(
+            from,
+            format!(
+                "{what}: pointer {p} names an entity of type {}, not {name} ({kind})",
+                self.kind(p)
+            ),
+        ))
     }
 
     fn read_model(&mut self, resolution: Option<Rational>) -> Result<Model, ReadError> {
         let entries: Vec<(usize, DirEntry)> =
             self.dir.iter().map(|(k, v)| (*k, v.clone())).collect();
-        // Trims and faces: report what is not honoured, and check their surface pointers.
-        for (de, e) in &entries {
-            let (ptr_field, what) = match e.kind {
-                144 => (0, "trimmed surface"),
-                143 => (1, "bounded surface"),
-                510 => (0, "face"),
-                _ => continue,
-            };
-            let f = self.fields(*de)?;
-            let v = f
-                .get(ptr_field)
-                .cloned()
-                .ok_or_else(|| self.entity_err(*de, "no surface pointer"))?;
-            let s = self.pointer(*de, &v, "surface")?;
-            let skind = self.dir[&s].kind;
-            if skind == 128 {
-                self.warn(*de, format!("{what}: its trimming curves are not honoured yet; the whole rational B-spline surface at directory entry {s} is used"));
-            } else {
-                self.warn(*de, format!("{what}: its surface at directory entry {s} is of type {skind}, not a rational B-spline surface (128); it is skipped"));
-            }
-        }
         let mut model = Model::from_patches(Format::Iges, Vec::new());
-        let mut surfaces = 0;
+        // Surfaces by directory entry: their number and parameter domain.
+        let mut surfaces: BTreeMap<usize, SurfaceInfo> = BTreeMap::new();
         let mut skipped: BTreeMap<i64, usize> = BTreeMap::new();
         for (de, e) in &entries {
             match e.kind {
                 128 => {
-                    for (span, patch) in self.read_surface(*de)? {
+                    let index = surfaces.len();
+                    let (info, pieces) = self.read_surface(*de, index)?;
+                    for (span, patch) in pieces {
                         model.patches.push(ModelPatch {
                             surface: patch,
-                            source: PatchSource {
-                                surface: surfaces,
-                                entity: Some(*de),
-                                span: Some(span),
-                            },
+                            source: PatchSource::of_span(index, Some(*de), span, &info.spans),
                         });
                     }
-                    surfaces += 1;
+                    surfaces.insert(*de, info);
                 }
                 108 | 114 | 118 | 120 | 122 | 140 | 190..=199 => {
                     *skipped.entry(e.kind).or_default() += 1
                 }
                 _ => {}
             }
-            let _ = e.form;
         }
         for (kind, n) in skipped {
             self.warnings.push(Warning {
@@ -551,17 +530,141 @@ impl Reader<'_> {
                 message: format!("{n} surface(s) of type {kind} are not rational B-spline surfaces (128) and are skipped"),
             });
         }
-        if surfaces == 0 {
+        if surfaces.is_empty() {
             return Err(ReadError::new(
                 self.name,
                 Place::File,
                 "no rational B-spline surface (entity 128) in the file",
             ));
         }
-        model.surfaces = surfaces;
+        // Faces: trimmed surfaces and B-rep faces.
+        let mut untrimmed: BTreeMap<String, Vec<usize>> = BTreeMap::new();
+        let mut brep = brep::BrepBuilder::default();
+        let mut shells = 0;
+        for (de, e) in &entries {
+            let (ptr_field, what) = match e.kind {
+                144 => (0, "trimmed surface"),
+                143 => (1, "bounded surface"),
+                510 => (0, "face"),
+                514 => {
+                    shells += 1;
+                    continue;
+                }
+                _ => continue,
+            };
+            let f = self.fields(*de)?;
+            let s = self
+                .pointer_at(*de, &f, ptr_field, "surface", false)?
+                .expect("required");
+            let Some(info) = surfaces.get(&s).cloned() else {
+                let skind = self.kind(s);
+                untrimmed
+                    .entry(format!("{what}s on surfaces of type {skind}, not rational B-spline surfaces (128): skipped with their surfaces"))
+                    .or_default()
+                    .push(*de);
+                if e.kind == 510 {
+                    // Its loops still count in the B-rep's topology.
+                    let _counted = self.brep_face(*de, None, &mut brep)?;
+                }
+                continue;
+            };
+            let face = match e.kind {
+                144 => self.trimmed_surface(*de, s, &info)?,
+                510 => self.brep_face(*de, Some(&info), &mut brep)?,
+                _ => Err("bounded surfaces (143) are not read yet".to_string()),
+            };
+            let face = match face {
+                Ok(face) => self.check_in_domain(face, &info)?,
+                Err(why) => Err(why),
+            };
+            match face {
+                Ok(face) => model.faces.push(face),
+                Err(why) => untrimmed.entry(why).or_default().push(*de),
+            }
+        }
+        if brep.faces > 0 {
+            model.brep = Some(brep.finish(shells));
+        }
+        for (why, des) in untrimmed {
+            let list: Vec<String> = des.iter().take(8).map(usize::to_string).collect();
+            let more = if des.len() > 8 { ", …" } else { "" };
+            let entries = if des.len() == 1 { "entry" } else { "entries" };
+            let message = if why.contains("skipped with their surfaces") {
+                format!("{} {why}", des.len())
+            } else {
+                format!("{} face(s) used untrimmed: {why}", des.len())
+            };
+            self.warnings.push(Warning {
+                place: format!("directory {entries} {}{more}", list.join(", ")),
+                message,
+            });
+        }
+        if !model.faces.is_empty() {
+            let loops: usize = model.faces.iter().map(|f| f.loops().count()).sum();
+            self.warnings.push(Warning {
+                place: "file".into(),
+                message: format!(
+                    "{} trimmed face(s) with {loops} loop(s) read (see `limn info`); the analyses do not clip to trims yet: every surface is used whole",
+                    model.faces.len()
+                ),
+            });
+        }
+        model.surfaces = surfaces.len();
         model.warnings = std::mem::take(&mut self.warnings);
         model.suggested_weld = resolution;
         Ok(model)
+    }
+
+    /// The face, when every curve of its loops lies in the surface's parameter domain or
+    /// outside it by no more than the loop tolerance. Further outside is an error naming the
+    /// loop, except on a surface the file states closed, whose trims may cross its seam (which
+    /// limn does not read yet): that face is used untrimmed, with the reason.
+    fn check_in_domain(
+        &self,
+        face: Face,
+        info: &SurfaceInfo,
+    ) -> Result<Result<Face, String>, ReadError> {
+        let tolerance = info.closing().tolerance.to_f64();
+        for l in face.loops() {
+            for (k, p) in l.pieces.iter().enumerate() {
+                if let InDomain::Outside(by) = in_domain(&p.curve, &face.domain) {
+                    if by > tolerance && info.closed.contains(&true) {
+                        return Ok(Err(format!("a trimming curve leaves the parameter domain of its closed surface by at least {by:.3e}; trims across a closed surface's seam are not read yet")));
+                    }
+                    if by > tolerance {
+                        let de = l.entity.or(face.entity).unwrap_or(0);
+                        let d = &face.domain;
+                        return Err(self.entity_err(
+                            de,
+                            format!(
+                                "trimming curve {} leaves the surface's parameter domain [{}, {}] x [{}, {}] by at least {by:.3e}",
+                                k + 1,
+                                d[0][0].to_f64(),
+                                d[0][1].to_f64(),
+                                d[1][0].to_f64(),
+                                d[1][1].to_f64()
+                            ),
+                        ));
+                    }
+                }
+            }
+        }
+        Ok(Ok(face))
+    }
+}
+
+/// `x -> R x + T` applied to a point, exact.
+fn apply(map: &Option<Affine>, p: &[Rational]) -> Vec<Rational> {
+    match map {
+        None => p.to_vec(),
+        Some((r, t)) => (0..3)
+            .map(|a| {
+                (0..3)
+                    .map(|b| Rational::from(&r[a][b] * &p[b]))
+                    .sum::<Rational>()
+                    + &t[a]
+            })
+            .collect(),
     }
 }
 

@@ -1,0 +1,156 @@
+//! Trimmed faces and B-reps read from the IGES fixtures: the loops close, their orientation is
+//! proven, and each B-rep edge's parameter-space curve maps through the surface onto the
+//! edge's two vertices (so the loops lie where the file's model-space edges are).
+
+use limn::model::{Face, Model, Orientation};
+use limn::number::Rational;
+use limn::surface::Point3;
+use std::path::Path;
+
+fn read(name: &str) -> Model {
+    limn::read_model(Path::new(&format!(
+        "{}/fixtures/iges/occt/{name}",
+        env!("CARGO_MANIFEST_DIR")
+    )))
+    .unwrap()
+}
+
+/// The surface of `face` at (u, v) of its parameter plane, exact: the Bézier piece whose
+/// parameter box holds the point, at the affine image of (u, v) in its `[0,1]²`.
+fn surface_point(model: &Model, face: &Face, uv: &[Rational]) -> Point3 {
+    for p in &model.patches {
+        if p.source.surface != face.surface {
+            continue;
+        }
+        let b = p
+            .source
+            .parameters
+            .as_ref()
+            .expect("NURBS pieces know their box");
+        let inside = (0..2).all(|k| uv[k] >= b[k][0] && uv[k] <= b[k][1]);
+        if inside {
+            let local: Vec<Rational> = (0..2)
+                .map(|k| Rational::from(&uv[k] - &b[k][0]) / Rational::from(&b[k][1] - &b[k][0]))
+                .collect();
+            return p.surface.eval(&local[0], &local[1]);
+        }
+    }
+    panic!(
+        "({}, {}) is in no piece of surface {}",
+        uv[0].to_f64(),
+        uv[1].to_f64(),
+        face.surface
+    );
+}
+
+fn distance(a: &Point3, b: &Point3) -> f64 {
+    (0..3)
+        .map(|k| {
+            let d = Rational::from(&a[k] - &b[k]).to_f64();
+            d * d
+        })
+        .sum::<f64>()
+        .sqrt()
+}
+
+/// Every run of consecutive loop pieces on one edge starts and ends, through the surface, at
+/// that edge's two vertices (in either order: the loop may use the edge backwards).
+fn edges_map_onto_their_vertices(name: &str, tolerance: f64) -> usize {
+    let model = read(name);
+    let brep = model.brep.as_ref().expect("a B-rep");
+    let mut checked = 0;
+    for face in &model.faces {
+        for l in face.loops() {
+            let mut k = 0;
+            while k < l.pieces.len() {
+                let Some(e) = l.pieces[k].edge else {
+                    k += 1;
+                    continue;
+                };
+                let mut last = k;
+                while last + 1 < l.pieces.len() && l.pieces[last + 1].edge == Some(e) {
+                    last += 1;
+                }
+                let a = surface_point(&model, face, &l.pieces[k].curve.start());
+                let b = surface_point(&model, face, &l.pieces[last].curve.end());
+                let [v0, v1] = &brep.edges[e].ends;
+                let forward = distance(&a, v0).max(distance(&b, v1));
+                let backward = distance(&a, v1).max(distance(&b, v0));
+                assert!(
+                    forward.min(backward) <= tolerance,
+                    "{name}: face {:?}, edge {e}: ends {forward:.3e} / {backward:.3e} from its vertices",
+                    face.entity
+                );
+                checked += 1;
+                k = last + 1;
+            }
+        }
+    }
+    checked
+}
+
+#[test]
+fn b_rep_edges_of_the_cylinder_and_the_cone_lie_on_their_vertices() {
+    // The files' resolution is 0.01 mm on parts of 150 mm; the parameter curves are written
+    // to 14 digits, so the ends agree far closer.
+    assert_eq!(
+        edges_map_onto_their_vertices("OCC8842_cylinder_Ideas.igs", 1e-9),
+        6
+    );
+    assert_eq!(
+        edges_map_onto_their_vertices("OCC8842_cone_Ideas.igs", 1e-9),
+        4
+    );
+}
+
+/// A file, its faces and loops, and its B-rep's faces, edges, vertices and genus.
+type Expected = (
+    &'static str,
+    usize,
+    usize,
+    Option<(usize, usize, usize, Option<i64>)>,
+);
+
+#[test]
+fn the_fixtures_faces_loops_and_b_reps() {
+    // (file, faces, loops, B-rep (faces, edges, vertices, genus))
+    let expect: [Expected; 7] = [
+        ("CTS17806-38038.igs", 1, 1, None),
+        ("bug24012_face.igs", 1, 1, None),
+        ("OCC8842_cylinder_Ideas.igs", 3, 3, Some((3, 3, 2, Some(0)))),
+        ("OCC8842_cone_Ideas.igs", 2, 2, Some((2, 2, 2, Some(0)))),
+        // Loops with model-space edges only: topology read, faces untrimmed (reported).
+        ("occ22470.igs", 0, 0, Some((18, 44, 28, Some(0)))),
+        ("bug22869_Spring.igs", 0, 0, Some((6, 11, 7, Some(0)))),
+        // A trim across the seam of a closed torus: untrimmed, reported.
+        ("OCC26138_Torus.igs", 0, 0, None),
+    ];
+    for (name, faces, loops, brep) in expect {
+        let m = read(name);
+        assert_eq!(m.faces.len(), faces, "{name}: faces");
+        let l: usize = m.faces.iter().map(|f| f.loops().count()).sum();
+        assert_eq!(l, loops, "{name}: loops");
+        let b = m.brep.as_ref().map(|b| {
+            let s = b.summary();
+            (s.faces, s.edges, s.vertices, s.genus)
+        });
+        assert_eq!(b, brep, "{name}: B-rep");
+        for f in &m.faces {
+            for l in f.loops() {
+                // Closed exactly (bridges included) and oriented, proven.
+                for (i, p) in l.pieces.iter().enumerate() {
+                    assert_eq!(
+                        p.curve.end(),
+                        l.pieces[(i + 1) % l.pieces.len()].curve.start()
+                    );
+                }
+                assert_ne!(l.orientation, Orientation::Undecided, "{name}");
+            }
+        }
+        let untrimmed = m
+            .warnings
+            .iter()
+            .any(|w| w.message.contains("used untrimmed"));
+        assert_eq!(untrimmed, faces == 0, "{name}: {:?}", m.warnings);
+    }
+}
