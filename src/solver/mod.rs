@@ -7,6 +7,7 @@ pub(crate) mod chain;
 pub mod checker;
 pub mod dyadic;
 pub mod plane_curve;
+pub mod point_in_face;
 pub mod precision;
 pub mod space_curve;
 pub mod system;
