@@ -206,15 +206,6 @@ impl TrimLoop {
     }
 }
 
-/// The univariate polynomials `(U, V, W)` of a curve's homogeneous coordinates.
-fn coordinates(c: &ParameterCurve) -> [Bernstein<Rational>; 3] {
-    let d = c.degree();
-    [0, 1, 2].map(|k| {
-        Bernstein::new(&[d], c.homogeneous().iter().map(|h| h[k].clone()).collect())
-            .expect("a curve has degree + 1 control points")
-    })
-}
-
 /// The deepest bisection of a rational piece when its signed area is enclosed (2^10 parts).
 const AREA_DEPTH: u32 = 10;
 
@@ -228,7 +219,7 @@ pub fn orientation<'a>(curves: impl Iterator<Item = &'a ParameterCurve>) -> Orie
     let mut exact = Rational::new();
     let mut rational: Vec<(Bernstein<Interval>, Bernstein<Interval>)> = Vec::new();
     for c in curves {
-        let [u, v, w] = coordinates(c);
+        let [u, v, w] = [0, 1, 2].map(|k| c.coordinate(k));
         let p = u
             .try_mul(&v.deriv(0))
             .and_then(|a| a.try_sub(&v.try_mul(&u.deriv(0))?))
@@ -334,17 +325,16 @@ const DOMAIN_DEPTH: u32 = 6;
 /// all nonnegative proves the side, a negative end coefficient (a value of the curve) proves a
 /// point outside.
 pub fn in_domain(curve: &ParameterCurve, domain: &[[Rational; 2]; 2]) -> InDomain {
-    let [u, v, w] = coordinates(curve);
+    let w = curve.coordinate(2);
     let sides = [
-        u.try_sub(&w.scale(&domain[0][0])),
-        w.scale(&domain[0][1]).try_sub(&u),
-        v.try_sub(&w.scale(&domain[1][0])),
-        w.scale(&domain[1][1]).try_sub(&v),
+        curve.offset(0, &domain[0][0]),
+        curve.offset(0, &domain[0][1]).neg(),
+        curve.offset(1, &domain[1][0]),
+        curve.offset(1, &domain[1][1]).neg(),
     ];
     let mut worst = 0.0f64;
     let mut undecided = false;
     for g in sides {
-        let g = g.expect("equal degrees");
         let mut stack = vec![(g, 0u32)];
         while let Some((g, depth)) = stack.pop() {
             let c = g.coeffs();

@@ -45,16 +45,8 @@ fn perturbed_sign(x: &Rational) -> Ordering {
 fn loop_parity(l: &TrimLoop, p: &[Rational], policy: &mut Policy) -> Option<bool> {
     let mut odd = false;
     for piece in &l.pieces {
-        let c = &piece.curve;
-        let d = c.degree();
-        let coord = |k: usize| {
-            Bernstein::new(&[d], c.homogeneous().iter().map(|h| h[k].clone()).collect())
-                .expect("degree + 1 control points")
-        };
-        let (u, v, w) = (coord(0), coord(1), coord(2));
         // g = V − v0 W (its sign is that of v − v0), h = U − u0 W (that of u − u0).
-        let g = v.try_sub(&w.scale(&p[1])).expect("equal degrees");
-        let h = u.try_sub(&w.scale(&p[0])).expect("equal degrees");
+        let (g, h) = (piece.curve.offset(1, &p[1]), piece.curve.offset(0, &p[0]));
         let at = |f: &Bernstein<Rational>, t: &Rational| f.eval(std::slice::from_ref(t));
         let roots = isolate_roots(&g, 60, policy);
         if !roots.unresolved.is_empty() {

@@ -6,6 +6,7 @@
 
 use super::knots::{bezier_segments, de_boor};
 use super::nurbs::{check_knots, NurbsError};
+use crate::bernstein::Bernstein;
 use crate::number::Rational;
 use std::cmp::Ordering;
 
@@ -79,6 +80,23 @@ impl<const K: usize> RationalCurve<K> {
     /// The homogeneous control points `[w P, w]`.
     pub fn homogeneous(&self) -> &[[Rational; K]] {
         &self.hom
+    }
+
+    /// Homogeneous coordinate `k` (`w x_k`, or the weight `w` for `k = K - 1`) as a univariate
+    /// Bernstein polynomial on `[0, 1]`.
+    pub fn coordinate(&self, k: usize) -> Bernstein<Rational> {
+        Bernstein::new(
+            &[self.degree()],
+            self.hom.iter().map(|h| h[k].clone()).collect(),
+        )
+        .expect("a curve has degree + 1 control points")
+    }
+
+    /// `X_k − c W`: since `W > 0`, its sign at `t` is the sign of `x_k(t) − c`.
+    pub fn offset(&self, k: usize, c: &Rational) -> Bernstein<Rational> {
+        self.coordinate(k)
+            .try_sub(&self.coordinate(K - 1).scale(c))
+            .expect("equal degrees")
     }
 
     /// Whether every weight is the same (the curve is polynomial).

@@ -538,6 +538,7 @@ impl Reader<'_> {
             ));
         }
         // Faces: trimmed surfaces and B-rep faces.
+        // Faces not read as trimmed, by what is said of them.
         let mut untrimmed: BTreeMap<String, Vec<usize>> = BTreeMap::new();
         let mut brep = brep::BrepBuilder::default();
         let mut shells = 0;
@@ -559,7 +560,7 @@ impl Reader<'_> {
             let Some(info) = surfaces.get(&s).cloned() else {
                 let skind = self.kind(s);
                 untrimmed
-                    .entry(format!("{what}s on surfaces of type {skind}, not rational B-spline surfaces (128): skipped with their surfaces"))
+                    .entry(format!("{what}(s) on surfaces of type {skind}, not rational B-spline surfaces (128): skipped with their surfaces"))
                     .or_default()
                     .push(*de);
                 if e.kind == 510 {
@@ -579,7 +580,10 @@ impl Reader<'_> {
             };
             match face {
                 Ok(face) => model.faces.push(face),
-                Err(why) => untrimmed.entry(why).or_default().push(*de),
+                Err(why) => untrimmed
+                    .entry(format!("face(s) used untrimmed: {why}"))
+                    .or_default()
+                    .push(*de),
             }
         }
         if brep.faces > 0 {
@@ -589,14 +593,9 @@ impl Reader<'_> {
             let list: Vec<String> = des.iter().take(8).map(usize::to_string).collect();
             let more = if des.len() > 8 { ", …" } else { "" };
             let entries = if des.len() == 1 { "entry" } else { "entries" };
-            let message = if why.contains("skipped with their surfaces") {
-                format!("{} {why}", des.len())
-            } else {
-                format!("{} face(s) used untrimmed: {why}", des.len())
-            };
             self.warnings.push(Warning {
                 place: format!("directory {entries} {}{more}", list.join(", ")),
-                message,
+                message: format!("{} {why}", des.len()),
             });
         }
         if !model.faces.is_empty() {
