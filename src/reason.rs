@@ -258,6 +258,18 @@ pub enum Reason {
     SampleNotEnclosed,
     /// Joins two curves along a side collapsed to a point (a pole).
     PoleJoin,
+    // --- Trimmed faces ---
+    /// A trimming curve lies along the curve (the curve's function vanishes on it).
+    TrimAlongCurve,
+    /// A crossing of the curve with a trimming curve is not isolated (a tangency, or two
+    /// crossings closer than the isolation's resolution).
+    TrimCrossing,
+    /// A crossing with a trimming curve is not placed on one arc of the curve (near a box
+    /// corner of the curve's subdivision, an arc's end or a patch side).
+    TrimCrossingPlace,
+    /// Whether the arc lies in its surface's faces is not proven (it passes within the
+    /// resolution of a trimming curve, or the patch has no parameter map onto its surface).
+    TrimMembership,
     /// No reason was recorded (an unresolved piece whose reason was not carried).
     Unknown,
 }
@@ -486,6 +498,16 @@ impl fmt::Display for Reason {
             SampleNotEnclosed => f.write_str("the sample's point is not enclosed"),
             PoleJoin => f.write_str(
                 "joins two curves along a side collapsed to a point (a pole), whose visibility is not proven",
+            ),
+            TrimAlongCurve => f.write_str("a trimming curve runs along the curve"),
+            TrimCrossing => f.write_str(
+                "a crossing of the curve with a trimming curve is not isolated (a tangency, or crossings too close together)",
+            ),
+            TrimCrossingPlace => f.write_str(
+                "a crossing with a trimming curve is not placed on one arc of the curve (near an arc's end or a patch side)",
+            ),
+            TrimMembership => f.write_str(
+                "whether the arc lies in its surface's trimmed faces is not proven",
             ),
             Unknown => f.write_str("no reason was recorded"),
         }

@@ -256,7 +256,13 @@ pub fn events(model: &Model, opts: &EventOptions) -> Result<Events, Error> {
         uncertified: Vec::new(),
     };
     if let Some((curve, weld, tol)) = &opts.parabolic {
-        let s = crate::analysis::contour::parabolic::parabolic_curves(model, curve, *weld, *tol);
+        let s = crate::analysis::contour::parabolic::parabolic_curves(
+            model,
+            curve,
+            *weld,
+            *tol,
+            crate::analysis::contour::family::Faces::Untrimmed,
+        );
         out.curves.extend(parabolic_events(model, &s));
         out.uncertified.push((
             EventKind::Parabolic,

@@ -286,6 +286,76 @@ pub fn residual_hull(
     hull
 }
 
+/// `W^{d₀+d₁} · p(U/W, V/W)` for a bivariate `p` of degrees `(d₀, d₁)` and a rational curve
+/// given by the univariate polynomials `U, V, W` of one degree `n` (its homogeneous
+/// coordinates): a univariate polynomial of degree `n (d₀ + d₁)`, exact for exact `N`.
+///
+/// With `x = U/W`, `B_i^{d}(x) = C(d, i) Uⁱ (W − U)^{d−i} / W^d`, so
+/// `W^{d₀+d₁} p(U/W, V/W) = Σ_ij c_ij C(d₀,i) C(d₁,j) Uⁱ (W−U)^{d₀−i} Vʲ (W−V)^{d₁−j}`: sums
+/// and products of polynomials only. Where `W > 0` its sign is the sign of `p` along the
+/// curve, and its roots are the curve's points on `p = 0` (`proofs/trimmed-faces.md`, 8).
+///
+/// # Panics
+/// If `p` is not bivariate or `U, V, W` are not univariate of one degree.
+pub fn compose_homogeneous<N: crate::number::Number>(
+    p: &Bernstein<N>,
+    [u, v, w]: [&Bernstein<N>; 3],
+) -> Bernstein<N> {
+    assert_eq!(p.nvars(), 2, "a bivariate polynomial");
+    assert!(
+        [u, v, w]
+            .iter()
+            .all(|c| c.nvars() == 1 && c.degrees() == w.degrees()),
+        "univariate coordinates of one degree"
+    );
+    let prec = p.coeffs()[0].precision();
+    let one = Bernstein::constant(1, N::from_i64(1, prec));
+    let powers = |x: &Bernstein<N>, d: usize| -> Vec<Bernstein<N>> {
+        let mut out = vec![one.clone()];
+        for k in 1..=d {
+            out.push(out[k - 1].try_mul(x).expect("univariate"));
+        }
+        out
+    };
+    // The basis polynomials xⁱ(1 − x)^{d−i} in homogeneous form, times C(d, i).
+    let basis = |x: &Bernstein<N>, d: usize| -> Vec<Bernstein<N>> {
+        let complement = w.try_sub(x).expect("one degree");
+        let (a, b) = (powers(x, d), powers(&complement, d));
+        let mut c = crate::number::Rational::from(1);
+        (0..=d)
+            .map(|i| {
+                if i > 0 {
+                    // C(d, i) = C(d, i − 1) (d − i + 1) / i.
+                    c = c.clone() * crate::number::Rational::from((d - i + 1) as i64)
+                        / crate::number::Rational::from(i as i64);
+                }
+                a[i].try_mul(&b[d - i])
+                    .expect("univariate")
+                    .scale(&N::from_rational(&c, prec))
+            })
+            .collect()
+    };
+    let [d0, d1] = [p.degrees()[0], p.degrees()[1]];
+    let (bu, bv) = (basis(u, d0), basis(v, d1));
+    let mut out: Option<Bernstein<N>> = None;
+    for (i, bu_i) in bu.iter().enumerate() {
+        let mut q: Option<Bernstein<N>> = None;
+        for (j, bv_j) in bv.iter().enumerate() {
+            let term = bv_j.scale(p.coeff(&[i, j]));
+            q = Some(match q {
+                Some(q) => q.try_add(&term).expect("one degree"),
+                None => term,
+            });
+        }
+        let term = q.expect("d1 + 1 terms").try_mul(bu_i).expect("univariate");
+        out = Some(match out {
+            Some(o) => o.try_add(&term).expect("one degree"),
+            None => term,
+        });
+    }
+    out.expect("d0 + 1 terms")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

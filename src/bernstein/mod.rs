@@ -22,7 +22,7 @@ mod power;
 mod reduce;
 mod subdivide;
 
-pub use compose::{compose_curve, compose_curve_f64, residual_hull};
+pub use compose::{compose_curve, compose_curve_f64, compose_homogeneous, residual_hull};
 pub use poly::{lift, Bernstein, BernsteinError, MAX_VARS};
 pub use power::antisymmetric_quotient;
 

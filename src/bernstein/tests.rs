@@ -273,3 +273,38 @@ fn face_factors_divide_exactly() {
     assert!(h.divide_face_factor(0, false).is_none());
     assert!(p.divide_face_factor(1, true).is_none());
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(24))]
+    /// `W^{d0+d1} p(U/W, V/W)` from the composition equals that product evaluated at rational
+    /// parameters (exactly), for random bivariate `p` and curves with positive weights.
+    #[test]
+    fn the_homogeneous_composition_is_p_along_the_curve(
+        p in (0usize..=3, 0usize..=2).prop_flat_map(|(a, b)| {
+            prop::collection::vec(coeff(), (a + 1) * (b + 1))
+                .prop_map(move |c| Bernstein::new(&[a, b], c).unwrap())
+        }),
+        n in 1usize..=3,
+        seed in prop::collection::vec((-8i64..8, -8i64..8, 1i64..6), 4),
+    ) {
+        let pick = |k: usize, f: fn(&(i64, i64, i64)) -> i64| -> Bernstein<Rational> {
+            let c: Vec<Rational> = (0..=n).map(|i| Rational::from((f(&seed[i % 4]) + k as i64, 7))).collect();
+            Bernstein::new(&[n], c).unwrap()
+        };
+        let u = pick(0, |s| s.0);
+        let v = pick(1, |s| s.1);
+        let w = Bernstein::new(&[n], (0..=n).map(|i| Rational::from((seed[i % 4].2, 3))).collect()).unwrap();
+        let h = compose_homogeneous(&p, [&u, &v, &w]);
+        prop_assert_eq!(h.degrees(), &[n * (p.degrees()[0] + p.degrees()[1])][..]);
+        for t in [Rational::new(), Rational::from((1, 3)), Rational::from((5, 7)), Rational::from(1)] {
+            let at = std::slice::from_ref(&t);
+            let (uu, vv, ww) = (u.eval(at), v.eval(at), w.eval(at));
+            let x = [Rational::from(&uu / &ww), Rational::from(&vv / &ww)];
+            let mut scale = Rational::from(1);
+            for _ in 0..(p.degrees()[0] + p.degrees()[1]) {
+                scale *= &ww;
+            }
+            prop_assert_eq!(h.eval(at), p.eval(&x) * scale);
+        }
+    }
+}

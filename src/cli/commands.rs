@@ -57,6 +57,7 @@ pub(crate) fn load(
     path: &std::path::Path,
     run: &RunArgs,
     other_outputs: Option<&std::path::PathBuf>,
+    clips: bool,
 ) -> Result<Loaded, CliError> {
     refuse_overwrite(run.output.iter().chain(other_outputs), run.force)?;
     let model = read_model(path).map_err(|e| CliError::input(e.to_string()))?;
@@ -71,6 +72,13 @@ pub(crate) fn load(
             "limn: warning: {}: {} more warnings (`limn info` lists them)",
             path.display(),
             model.warnings.len() - SHOWN
+        );
+    }
+    if !clips && !model.faces.is_empty() {
+        eprintln!(
+            "limn: warning: {}: this analysis does not clip to the {} trimmed face(s) yet: every surface is used whole",
+            path.display(),
+            model.faces.len()
         );
     }
     if model.patches.is_empty() {
@@ -154,7 +162,12 @@ pub(crate) fn silhouette_command(
             "--certificate: only the certified method proves anything",
         ));
     }
-    let loaded = load(&model, &run, certificate.as_ref())?;
+    let loaded = load(
+        &model,
+        &run,
+        certificate.as_ref(),
+        method == Method::Certified,
+    )?;
     let start = std::time::Instant::now();
     let Loaded {
         name,
@@ -225,7 +238,7 @@ pub(crate) fn curves_command(args: CurvesArgs, out: &mut dyn Write) -> Result<()
         opts,
         pool,
         tol_abs,
-    } = load(&model, &run, None)?;
+    } = load(&model, &run, None, kind == CurveKind::Parabolic)?;
     let start = std::time::Instant::now();
     let threads = pool.current_num_threads();
     let parabolic_curves: Silhouette;
@@ -299,7 +312,7 @@ pub(crate) fn events_command(args: EventsArgs, out: &mut dyn Write) -> Result<()
         opts,
         pool,
         tol_abs,
-    } = load(&model, &run, None)?;
+    } = load(&model, &run, None, false)?;
     let start = std::time::Instant::now();
     let deadline = opts.deadline;
     let eopts = EventOptions {
@@ -338,7 +351,7 @@ pub(crate) fn hlr_command(args: HlrArgs, out: &mut dyn Write) -> Result<(), CliE
     } = args;
     check_run_arguments(&run)?;
     let view = parse_view(view)?;
-    let l = load(&model, &run, None)?;
+    let l = load(&model, &run, None, false)?;
     let hopts = HlrOptions {
         curve: l.opts.clone(),
         tol: l.tol_abs,
@@ -369,7 +382,7 @@ pub(crate) fn visible_command(args: VisibleArgs, out: &mut dyn Write) -> Result<
     }
     check_run_arguments(&run)?;
     let view = parse_view(view)?;
-    let l = load(&model, &run, None)?;
+    let l = load(&model, &run, None, false)?;
     let vopts = VisibleOptions {
         curve: l.opts.clone(),
         max_depth: cell_depth,

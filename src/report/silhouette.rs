@@ -1,7 +1,9 @@
 //! The JSON and text report of `limn silhouette` and `limn curves --kind parabolic` (field
 //! names are a public contract: `docs/commands/silhouette.md`).
 
-use crate::analysis::contour::curves::{Degenerate, Silhouette, SilhouetteCurve, SingularPoint};
+use crate::analysis::contour::curves::{
+    Degenerate, Silhouette, SilhouetteCurve, SingularPoint, TrimSummary,
+};
 use crate::analysis::view::View;
 use crate::geometry::Rect;
 use crate::solver::Escalations;
@@ -55,6 +57,9 @@ pub struct SilhouetteReport {
     pub ending_edges: Vec<(usize, Edge, usize, Edge)>,
     /// Degenerate cases recognised exactly.
     pub degenerate: Vec<Degenerate>,
+    /// What clipping to the model's trimmed faces did (absent when the model has none).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub trims: Option<TrimSummary>,
     /// Work done.
     pub stats: SilhouetteStats,
 }
@@ -180,6 +185,12 @@ impl SilhouetteReport {
         for (k, n) in kinds {
             t += &format!("degenerate: {n} x {k}\n");
         }
+        if let Some(c) = &r.trims {
+            t += &format!(
+                "trimmed faces: {} (curves clipped to them: {} crossings with trimming curves, {} arcs outside dropped, {} curve ends on trimming curves)\n",
+                c.faces, c.crossings, c.dropped_arcs, c.trim_ends
+            );
+        }
         t += &format!(
             "stats: {} boxes, {} sign questions escalated beyond f64, {:.1} ms on {} threads\n",
             r.stats.boxes,
@@ -258,6 +269,7 @@ impl SilhouetteReport {
             unjoined_edges: s.unjoined_edges.clone(),
             ending_edges: s.ending_edges.clone(),
             degenerate: s.degenerate.clone(),
+            trims: s.trims.clone(),
             stats: SilhouetteStats {
                 boxes: s.boxes,
                 escalations: s.escalations.clone(),

@@ -179,6 +179,103 @@ pub fn point_in_face(face: &Face, p: &[Rational]) -> Membership {
     }
 }
 
+/// How deep a loop piece is bisected before it is said to meet a box.
+const MISS_DEPTH: u32 = 12;
+
+/// Whether the rational curve with homogeneous coordinates `c = (U, V, W)` (enclosed, `W > 0`)
+/// provably misses the closed box `b = [[u0, u1], [v0, v1]]`: the curve lies in the hull of
+/// its projected control points (positive weights), so it misses the box when that hull's
+/// bounding box does, tried on the halves of the parameter down to [`MISS_DEPTH`]
+/// (`proofs/trimmed-faces.md`, 7).
+pub(crate) fn curve_misses_box(c: &[Bernstein<Interval>; 3], b: &[[f64; 2]; 2]) -> bool {
+    piece_misses(c, b, MISS_DEPTH)
+}
+
+fn piece_misses(c: &[Bernstein<Interval>; 3], b: &[[f64; 2]; 2], depth: u32) -> bool {
+    let n = c[2].coeffs().len();
+    let mut bbox = [[f64::INFINITY, f64::NEG_INFINITY]; 2];
+    let mut bounded = true;
+    for k in 0..n {
+        let w = c[2].coeffs()[k];
+        for (axis, side) in bbox.iter_mut().enumerate() {
+            match c[axis].coeffs()[k].checked_div(&w).filter(|_| w.lo() > 0.0) {
+                Some(x) => {
+                    side[0] = side[0].min(x.lo());
+                    side[1] = side[1].max(x.hi());
+                }
+                None => bounded = false,
+            }
+        }
+    }
+    if bounded && (0..2).any(|a| bbox[a][1] < b[a][0] || bbox[a][0] > b[a][1]) {
+        return true;
+    }
+    if depth == 0 {
+        return false;
+    }
+    let halves = c.clone().map(|x| x.subdivide_half(0));
+    let left = [
+        halves[0].0.clone(),
+        halves[1].0.clone(),
+        halves[2].0.clone(),
+    ];
+    let right = [
+        halves[0].1.clone(),
+        halves[1].1.clone(),
+        halves[2].1.clone(),
+    ];
+    piece_misses(&left, b, depth - 1) && piece_misses(&right, b, depth - 1)
+}
+
+/// Whether every point of the closed box `b = [[u0, u1], [v0, v1]]` (the surface's parameter
+/// plane) lies in `face`, none does, or that is not proven: when the box lies in the open
+/// domain (or outside the closed one) and provably meets no loop, it is connected and misses
+/// the boundary, so all its points share the membership of its centre
+/// ([`point_in_face`]); otherwise undecided.
+pub fn box_in_face(face: &Face, b: &[[f64; 2]; 2]) -> Membership {
+    let d = face.domain.clone().map(|r| r.map(|x| x.to_f64()));
+    // The domain's ends rounded to f64 may move by half an ulp: compare with a margin.
+    let slack = |x: f64| x.abs() * 4.0 * f64::EPSILON + f64::MIN_POSITIVE;
+    let outside =
+        (0..2).any(|a| b[a][1] < d[a][0] - slack(d[a][0]) || b[a][0] > d[a][1] + slack(d[a][1]));
+    if outside {
+        return Membership::Outside;
+    }
+    let inside =
+        (0..2).all(|a| b[a][0] > d[a][0] + slack(d[a][0]) && b[a][1] < d[a][1] - slack(d[a][1]));
+    if !inside {
+        return Membership::Undecided;
+    }
+    for l in face.loops() {
+        for piece in &l.pieces {
+            let c = [0, 1, 2].map(|k| piece.curve.coordinate(k).convert(Precision::F64));
+            if !curve_misses_box(&c, b) {
+                return Membership::Undecided;
+            }
+        }
+    }
+    let centre =
+        |a: usize| Rational::from_f64(0.5 * b[a][0] + 0.5 * b[a][1]).expect("a finite box");
+    point_in_face(face, &[centre(0), centre(1)])
+}
+
+/// [`box_in_face`] for a surface's region, the union of its faces: inside if inside one of
+/// them, outside if outside all of them.
+pub fn box_in_faces<'a>(
+    faces: impl IntoIterator<Item = &'a Face>,
+    b: &[[f64; 2]; 2],
+) -> Membership {
+    let mut out = Membership::Outside;
+    for f in faces {
+        match box_in_face(f, b) {
+            Membership::Inside => return Membership::Inside,
+            Membership::Undecided => out = Membership::Undecided,
+            Membership::Outside => {}
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -313,6 +410,63 @@ mod tests {
         assert!(
             matches!(lower, Membership::Inside | Membership::Undecided),
             "{lower:?}"
+        );
+    }
+
+    /// Boxes in a square with a square hole: inside, in the hole, outside, and across each
+    /// loop and the domain's boundary (undecided: a box across a loop is neither).
+    #[test]
+    fn boxes_in_a_square_with_a_hole() {
+        let f = face(
+            Some(polygon(&[(1, 1, 8), (7, 1, 8), (7, 7, 8), (1, 7, 8)])),
+            vec![polygon(&[(3, 3, 8), (3, 5, 8), (5, 5, 8), (5, 3, 8)])],
+        );
+        let b = |u0: f64, u1: f64, v0: f64, v1: f64| [[u0, u1], [v0, v1]];
+        assert_eq!(box_in_face(&f, &b(0.2, 0.3, 0.2, 0.3)), Membership::Inside);
+        assert_eq!(box_in_face(&f, &b(0.2, 0.2, 0.6, 0.6)), Membership::Inside);
+        assert_eq!(
+            box_in_face(&f, &b(0.45, 0.55, 0.4, 0.6)),
+            Membership::Outside
+        );
+        assert_eq!(
+            box_in_face(&f, &b(0.9, 0.95, 0.1, 0.95)),
+            Membership::Outside
+        );
+        assert_eq!(box_in_face(&f, &b(1.5, 2.0, 0.2, 0.3)), Membership::Outside);
+        assert_eq!(
+            box_in_face(&f, &b(0.3, 0.4, 0.3, 0.4)),
+            Membership::Undecided
+        );
+        assert_eq!(
+            box_in_face(&f, &b(0.8, 0.9, 0.2, 0.3)),
+            Membership::Undecided
+        );
+        assert_eq!(
+            box_in_face(&f, &b(0.0, 0.1, 0.2, 0.3)),
+            Membership::Undecided
+        );
+        // Just off a loop, on either side.
+        let e = 1e-9;
+        assert_eq!(
+            box_in_face(&f, &b(0.375 - 2.0 * e, 0.375 - e, 0.45, 0.5)),
+            Membership::Inside
+        );
+        assert_eq!(
+            box_in_face(&f, &b(0.375 + e, 0.375 + 2.0 * e, 0.45, 0.5)),
+            Membership::Outside
+        );
+        // The union of two faces: inside either.
+        let g = face(
+            Some(polygon(&[(3, 3, 8), (5, 3, 8), (5, 5, 8), (3, 5, 8)])),
+            Vec::new(),
+        );
+        assert_eq!(
+            box_in_faces([&f, &g], &b(0.45, 0.55, 0.4, 0.6)),
+            Membership::Inside
+        );
+        assert_eq!(
+            box_in_faces([&f, &g], &b(0.9, 0.95, 0.1, 0.95)),
+            Membership::Outside
         );
     }
 }

@@ -16,4 +16,5 @@ mod hlr;
 mod invariance;
 mod parabolic;
 mod silhouette;
+mod trimmed_curves;
 mod visible;

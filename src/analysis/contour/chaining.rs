@@ -16,15 +16,28 @@ use crate::surface::{Edge, RationalPatch};
 use rayon::prelude::*;
 use std::collections::BTreeMap;
 
+/// Where the model's curves may end, proven: on the open boundary of the patches, and on
+/// trimming curves (with the proven distance from the drawn end to the true one).
+pub(crate) struct CurveEnds<'a> {
+    /// Patch sides on the model's open boundary.
+    pub(crate) open_boundary: &'a [(usize, Edge)],
+    /// Joined nodes on trimming curves ([`super::trims`]).
+    pub(crate) trim_ends: &'a BTreeMap<Node, f64>,
+}
+
 pub(crate) fn chain_model(
     tops: &[CurveTopology],
     gs_fast: &[Bernstein<f64>],
     patches: &[&RationalPatch],
     joins: &mut Joins,
-    open_boundary: &[(usize, Edge)],
+    ends: CurveEnds,
     accuracy: Option<(&[Option<PatchAccuracy>], f64)>,
     deadline: Option<std::time::Instant>,
 ) -> (Vec<SilhouetteCurve>, Vec<SingularPoint>) {
+    let CurveEnds {
+        open_boundary,
+        trim_ends,
+    } = ends;
     let draw: Vec<DrawPatch> = patches.iter().map(|p| DrawPatch::new(p)).collect();
     // The certified traces of all arcs, in parallel (each arc is independent).
     type Trace = Option<Traced>;
@@ -74,7 +87,8 @@ pub(crate) fn chain_model(
             }
         }
     }
-    let ends_on_boundary = |n: &Node| boundary_nodes.contains(n);
+    // Ends on trimming curves are ends on the boundary of the faces.
+    let ends_on_boundary = |n: &Node| boundary_nodes.contains(n) || trim_ends.contains_key(n);
     let mut used = vec![false; arcs.len()];
     let mut curves = Vec::new();
     // Open curves start at every arc of a node of degree other than 2 (a junction starts as
@@ -212,6 +226,16 @@ pub(crate) fn chain_model(
             .iter()
             .map(|&(p, u, v)| draw[p].eval(u, v))
             .collect();
+        // A curve that ends on a trimming curve is drawn to a level next to it: the rest of
+        // the true curve lies within the proven extent of the arc between
+        // (`proofs/trimmed-faces.md`, 8).
+        if !closed {
+            for n in [&nodes[0], nodes.last().expect("nonempty")] {
+                if let Some(&e) = trim_ends.get(n) {
+                    worst = worst.map(|w| w.max(e));
+                }
+            }
+        }
         // The drawn points are f64 evaluations: their rounding is part of the bound
         // (`proofs/chord-accuracy.md`, "The drawn points"; the traced vertices lie in the unit
         // square).

@@ -142,6 +142,21 @@ pub struct Silhouette {
     /// points in space are the model's.
     #[serde(skip)]
     pub frame: Frame,
+    /// What clipping to the model's trimmed faces did, when the curves were clipped.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub trims: Option<TrimSummary>,
+}
+/// What clipping a model's curves to its trimmed faces did (`proofs/trimmed-faces.md`, 8).
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
+pub struct TrimSummary {
+    /// The model's faces.
+    pub faces: usize,
+    /// Crossings of the curves with trimming curves inside patches, isolated and proven.
+    pub crossings: usize,
+    /// Arcs dropped as outside every face of their surface.
+    pub dropped_arcs: usize,
+    /// Points where a curve ends on a trimming curve.
+    pub trim_ends: usize,
 }
 impl Silhouette {
     /// The result of a run on the model in `frame` carried back to the model's coordinates
@@ -206,6 +221,7 @@ impl Silhouette {
             tolerance: None,
             escalations: Escalations::default(),
             frame: Frame::identity(),
+            trims: None,
         }
     }
 }

@@ -6,13 +6,15 @@
 //! point; each family says what differs in its [`CurveRules`].
 
 use crate::analysis::chords::plane_curve::PatchAccuracy;
-use crate::analysis::contour::chaining::chain_model;
+use crate::analysis::contour::chaining::{chain_model, CurveEnds};
+use crate::analysis::contour::curves::TrimSummary;
 use crate::analysis::contour::curves::{Degenerate, Node, Silhouette, SingularPoint, SolvedPatch};
 use crate::analysis::contour::drawing::refined_for;
 use crate::analysis::contour::joins::{ends_at_edge, join_side, join_zero_side, Joins};
 use crate::analysis::contour::sides::{
     both_on, corner_index, deflate_side_counted, side_axis, side_of,
 };
+use crate::analysis::contour::trims::clip_to_faces;
 use crate::bernstein::Bernstein;
 use crate::geometry::Rect;
 use crate::model::{Model, PatchAdjacency, WeldTolerance};
@@ -88,6 +90,15 @@ pub struct CurveRules {
     pub spurious_collapse: Option<fn(&RationalPatch, Edge) -> usize>,
 }
 
+/// Whether the curves are clipped to the model's trimmed faces.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Faces {
+    /// Clipped to the faces the file states (surfaces no face names are used whole).
+    Trimmed,
+    /// On the whole surfaces (for analyses that do not honour trims yet).
+    Untrimmed,
+}
+
 /// The curves `g_i = 0` on a model, one exact polynomial per patch (any family defined by
 /// one equation in the patch parameters: silhouettes, parabolic curves): solved per patch with
 /// certified topology, with collapsed sides divided out, sides and lines where `g` vanishes
@@ -104,6 +115,7 @@ pub fn model_curves(
     opts: &CurveOptions,
     weld: WeldTolerance,
     tol: Option<f64>,
+    faces: Faces,
 ) -> Silhouette {
     assert_eq!(gs.len(), model.patches.len(), "one polynomial per patch");
     let patches: Vec<&RationalPatch> = model.patches.iter().map(|p| &p.surface).collect();
@@ -343,6 +355,24 @@ pub fn model_curves(
             joins.union(w[0], w[1]);
         }
     }
+    // On trimmed faces: the arcs clipped to them (`proofs/trimmed-faces.md`, 8).
+    let clipped = match faces {
+        Faces::Trimmed if !model.faces.is_empty() => Some(clip_to_faces(
+            model,
+            &mut tops,
+            &quotients,
+            &mut joins,
+            &mut Policy::new(&opts.ladder, &mut escalations),
+        )),
+        _ => None,
+    };
+    if let Some(c) = &clipped {
+        unresolved.extend(c.unresolved.iter().cloned());
+    }
+    let trim_ends = clipped
+        .as_ref()
+        .map(|c| c.trim_ends.clone())
+        .unwrap_or_default();
     let accuracy: Option<Vec<Option<PatchAccuracy>>> = tol.map(|_| {
         quotients
             .par_iter()
@@ -355,7 +385,10 @@ pub fn model_curves(
         &gs_fast,
         &patches,
         &mut joins,
-        &open_boundary,
+        CurveEnds {
+            open_boundary: &open_boundary,
+            trim_ends: &trim_ends,
+        },
         accuracy.as_deref().zip(tol),
         opts.deadline,
     );
@@ -373,6 +406,12 @@ pub fn model_curves(
         tolerance: tol,
         escalations,
         frame: crate::analysis::frame::Frame::identity(),
+        trims: clipped.map(|c| TrimSummary {
+            faces: model.faces.len(),
+            crossings: c.crossings,
+            dropped_arcs: c.dropped,
+            trim_ends: c.trim_ends.len(),
+        }),
     }
 }
 

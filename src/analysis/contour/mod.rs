@@ -19,3 +19,4 @@ pub mod joins;
 pub mod parabolic;
 pub mod sides;
 pub mod silhouette;
+mod trims;

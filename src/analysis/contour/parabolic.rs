@@ -12,7 +12,7 @@
 use crate::analysis::chords::plane_curve::{mean_value_range, range_enclosing};
 use crate::analysis::chords::space_curve::TangentRanges;
 use crate::analysis::contour::curves::Silhouette;
-use crate::analysis::contour::family::{model_curves, ContourOptions, CurveRules};
+use crate::analysis::contour::family::{model_curves, ContourOptions, CurveRules, Faces};
 use crate::analysis::frame::Frame;
 use crate::bernstein::Bernstein;
 use crate::error::Error;
@@ -192,7 +192,13 @@ pub fn parabolic(model: &Model, opts: &ContourOptions) -> Result<Silhouette, Err
     // In the model's own frame (`proofs/model-frame.md`).
     let frame = Frame::of(model);
     let local = frame.model(model);
-    let s = parabolic_curves(&local, &opts.curve, opts.weld_for(&local), opts.tol);
+    let s = parabolic_curves(
+        &local,
+        &opts.curve,
+        opts.weld_for(&local),
+        opts.tol,
+        Faces::Trimmed,
+    );
     Ok(s.in_model_frame(&frame, opts.tol))
 }
 
@@ -202,6 +208,7 @@ pub(crate) fn parabolic_curves(
     opts: &CurveOptions,
     weld: WeldTolerance,
     tol: Option<f64>,
+    faces: Faces,
 ) -> Silhouette {
     let ks: Vec<Poly> = model
         .patches
@@ -215,7 +222,7 @@ pub(crate) fn parabolic_curves(
         whole_line: "parabolic line",
         spurious_collapse: None,
     };
-    model_curves(model, ks, &rules, opts, weld, tol)
+    model_curves(model, ks, &rules, opts, weld, tol, faces)
 }
 
 #[cfg(test)]

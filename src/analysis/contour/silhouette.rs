@@ -7,7 +7,7 @@
 //! per patch and joined across shared edges where the join is proven, by the model-level
 //! curve machinery ([`model_curves`], `proofs/silhouette-join.md`).
 
-use crate::analysis::contour::family::ContourOptions;
+use crate::analysis::contour::family::{ContourOptions, Faces};
 use crate::analysis::frame::Frame;
 use crate::analysis::projection::ProjectionError;
 use crate::analysis::view::View;
@@ -128,6 +128,7 @@ pub fn silhouette(model: &Model, view: &View, opts: &ContourOptions) -> Result<S
         &opts.curve,
         opts.weld_for(&local),
         opts.tol,
+        Faces::Trimmed,
     );
     Ok(s.in_model_frame(&frame, opts.tol))
 }
@@ -140,6 +141,7 @@ pub(crate) fn silhouette_curves(
     opts: &CurveOptions,
     weld: WeldTolerance,
     tol: Option<f64>,
+    faces: Faces,
 ) -> Silhouette {
     let gs: Vec<Bernstein<Rational>> = model
         .patches
@@ -153,7 +155,7 @@ pub(crate) fn silhouette_curves(
         whole_line: "silhouette line",
         spurious_collapse: Some(normal_side_order),
     };
-    model_curves(model, gs, &rules, opts, weld, tol)
+    model_curves(model, gs, &rules, opts, weld, tol, faces)
 }
 
 /// The order to which the normal `Ñ` (every component) vanishes on a side: the spurious

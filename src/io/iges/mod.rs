@@ -603,7 +603,7 @@ impl Reader<'_> {
             self.warnings.push(Warning {
                 place: "file".into(),
                 message: format!(
-                    "{} trimmed face(s) with {loops} loop(s) read (see `limn info`); the analyses do not clip to trims yet: every surface is used whole",
+                    "{} trimmed face(s) with {loops} loop(s) read (see `limn info`): silhouettes and parabolic curves are clipped to them",
                     model.faces.len()
                 ),
             });

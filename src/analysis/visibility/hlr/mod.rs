@@ -153,7 +153,14 @@ fn drawing(model: &Model, view: &View, opts: &HlrOptions) -> Result<HiddenLines,
     let scene = Scene::new(model, view, weld)?;
     // With a tolerance, the arcs' ends are located finely enough for it.
     let curve = refined_for(&opts.curve, model, opts.tol);
-    let sil = silhouette_curves(model, view, &curve, weld, None);
+    let sil = silhouette_curves(
+        model,
+        view,
+        &curve,
+        weld,
+        None,
+        crate::analysis::contour::family::Faces::Untrimmed,
+    );
     let mut stats = HlrStats {
         silhouette_unresolved: sil.unresolved.len(),
         escalations: sil.escalations.clone(),
