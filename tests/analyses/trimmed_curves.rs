@@ -346,3 +346,76 @@ fn the_fixtures_silhouettes_on_their_faces_are_certified() {
         }
     }
 }
+
+/// The parabolic curves of a torus (its top and bottom circles: lines of the patches on which
+/// the curvature vanishes) on a patch trimmed by a half-plane across them: clipped at the
+/// line like the silhouette, through the same machinery.
+#[test]
+fn parabolic_lines_of_a_torus_are_clipped_at_a_trim() {
+    let torus = || {
+        let mut m = Model::from_patches(Format::Json, shapes::torus(&q(3, 1), &q(1, 1)));
+        for p in &mut m.patches {
+            p.source.parameters = Some(unit());
+        }
+        m
+    };
+    let whole = limn::parabolic(&torus(), &opts()).unwrap();
+    assert!(whole.certified());
+    let all = points(&whole);
+    let (p, on_p) = busiest(&all);
+    // Cut across the axis along which the curve on p runs.
+    let span = |a: usize| {
+        let (lo, hi) = on_p
+            .iter()
+            .fold((1.0f64, 0.0f64), |(x, y), z| (x.min(z[a]), y.max(z[a])));
+        (hi - lo, lo, hi)
+    };
+    let axis = if span(0).0 >= span(1).0 { 0 } else { 1 };
+    let (_, lo, hi) = span(axis);
+    let c = q((500.0 * (lo + hi)).round() as i64, 1000) + q(1, 3000);
+    let cf = c.to_f64();
+    let corner = |x: Rational, y: Rational| if axis == 0 { [x, y] } else { [y, x] };
+    let mut model = torus();
+    model.faces.push(Face {
+        surface: p,
+        entity: None,
+        domain: unit(),
+        outer: Some(polygon(&if axis == 0 {
+            [
+                corner(q(0, 1), q(0, 1)),
+                corner(c.clone(), q(0, 1)),
+                corner(c.clone(), q(1, 1)),
+                corner(q(0, 1), q(1, 1)),
+            ]
+        } else {
+            [
+                corner(q(0, 1), q(0, 1)),
+                corner(q(0, 1), q(1, 1)),
+                corner(c.clone(), q(1, 1)),
+                corner(c.clone(), q(0, 1)),
+            ]
+        })),
+        inner: Vec::new(),
+    });
+    let cut = limn::parabolic(&model, &opts()).unwrap();
+    assert!(cut.certified(), "{:?}", cut.unresolved);
+    let trims = cut.trims.clone().unwrap();
+    let crossings = on_p
+        .windows(2)
+        .filter(|w| (w[0][axis] - cf) * (w[1][axis] - cf) < 0.0)
+        .count();
+    assert!(crossings >= 1);
+    assert!(trims.trim_ends >= crossings);
+    for &(q_, u, v) in &points(&cut) {
+        if q_ == p {
+            let x = if axis == 0 { u } else { v };
+            assert!(x <= cf + 1e-6, "a point at {x} > {cf} was kept");
+        }
+    }
+    for (uv, x) in on_patch(&whole, p) {
+        if uv[axis] < cf - 1e-3 {
+            let d = to_drawing(&cut, x);
+            assert!(d < 4e-6, "the point {uv:?} inside the face was lost ({d})");
+        }
+    }
+}

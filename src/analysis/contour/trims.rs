@@ -279,85 +279,135 @@ fn arc_membership(
     on.membership(&a.cell.to_f64())
 }
 
-/// The membership of an arc on a line `x_f = c` (a segment on which the function vanishes):
-/// when no loop crosses the open segment (the roots of `X_f − c W` on every loop piece, placed
-/// off it), its interior is in or out as a whole, decided at its midpoint; when loop pieces
-/// along the line cover the whole segment, it lies on the faces' boundary, in the closed faces.
+/// An arc on a line `x_f = c` (a segment on which the function vanishes): the line, and the
+/// ranges of its lower and upper ends along the other variable.
+struct OnLine {
+    f: usize,
+    c: Rational,
+    low: [f64; 2],
+    high: [f64; 2],
+}
+
+impl OnLine {
+    /// The line of an arc on an edge: the coordinate both ends share exactly.
+    fn of(t: &CurveTopology, a: &Arc) -> Option<OnLine> {
+        let (from, to) = (t.locations[&a.from], t.locations[&a.to]);
+        let f = (0..2).find(|&k| {
+            from.width(k) == 0.0 && to.width(k) == 0.0 && from.axis(k)[0] == to.axis(k)[0]
+        })?;
+        let c = Rational::from_f64(from.axis(f)[0])?;
+        let ends = [from.axis(1 - f), to.axis(1 - f)];
+        let (low, high) = if ends[0][0] <= ends[1][0] {
+            (ends[0], ends[1])
+        } else {
+            (ends[1], ends[0])
+        };
+        Some(OnLine { f, c, low, high })
+    }
+
+    /// The open segment's range (between its ends' locations).
+    fn open(&self) -> [f64; 2] {
+        [self.low[1], self.high[0]]
+    }
+
+    /// The loops on the open segment: the ranges of the pieces along the line, and the
+    /// enclosures (along the line) of the crossings of the others with it, the roots of
+    /// `X_f − c W` placed on the open segment (exactly for an exact root or a piece whose other
+    /// coordinate is constant, by the enclosure otherwise). `None` if a root is not isolated
+    /// where it may lie on the segment.
+    #[allow(clippy::type_complexity)]
+    fn loops(&self, on: &OnPatch, policy: &mut Policy) -> Option<(Vec<[f64; 2]>, Vec<[f64; 2]>)> {
+        let (f, s, c, open) = (self.f, 1 - self.f, &self.c, self.open());
+        let end = |e: f64| Rational::from_f64(e).expect("finite");
+        let mut along = Vec::new();
+        let mut crossings = Vec::new();
+        for piece in on.pieces() {
+            let at = |x: &Rational| {
+                let x = std::slice::from_ref(x);
+                Rational::from(&piece[s].eval(x) / &piece[2].eval(x))
+            };
+            let k = piece[f].try_sub(&piece[2].scale(c)).expect("one degree");
+            if k.is_zero() {
+                // Along the line: it covers at least the range between its ends (continuity),
+                // and its ends on the open segment are loop vertices there.
+                let (e0, e1) = (at(&Rational::new()), at(&Rational::from(1)));
+                let (lo, hi) = if e0 <= e1 { (e0, e1) } else { (e1, e0) };
+                along.push([lo.lower_f64(), hi.upper_f64()]);
+                for e in [lo, hi] {
+                    if e > end(open[0]) && e < end(open[1]) {
+                        crossings.push([e.lower_f64(), e.upper_f64()]);
+                    }
+                }
+                continue;
+            }
+            // A piece along a line of the other coordinate has that coordinate exactly.
+            let k0 = Rational::from(&piece[s].coeffs()[0] / &piece[2].coeffs()[0]);
+            let constant = piece[s]
+                .try_sub(&piece[2].scale(&k0))
+                .expect("one degree")
+                .is_zero();
+            let place = |lo: &Rational, hi: &Rational| -> Option<[f64; 2]> {
+                let exact = if constant {
+                    Some(k0.clone())
+                } else {
+                    (lo == hi).then(|| at(lo))
+                };
+                match exact {
+                    Some(x) => (x > end(open[0]) && x < end(open[1])).then(|| {
+                        let (a, b) = (x.lower_f64(), x.upper_f64());
+                        [a, b]
+                    }),
+                    None => {
+                        let r = curve_box(&piece, lo, hi)
+                            .map_or([f64::NEG_INFINITY, f64::INFINITY], |r| r.axis(s));
+                        (r[1] > open[0] && r[0] < open[1]).then_some(r)
+                    }
+                }
+            };
+            let roots = isolate_roots(&k, 52, policy);
+            for (lo, hi) in &roots.unresolved {
+                if place(&lo.to_rational(), &hi.to_rational()).is_some() {
+                    return None;
+                }
+            }
+            for root in &roots.roots {
+                let root = refine_root(&k, *root, 1e-13, policy);
+                if let Some(r) = place(&root.lo().to_rational(), &root.hi().to_rational()) {
+                    crossings.push(r);
+                }
+            }
+        }
+        // Crossings at one loop vertex (the ends of two pieces), or not separated: one.
+        crossings.sort_by(|x, y| x[0].total_cmp(&y[0]));
+        let mut merged: Vec<[f64; 2]> = Vec::new();
+        for x in crossings {
+            match merged.last_mut() {
+                Some(m) if x[0] <= m[1] => m[1] = m[1].max(x[1]),
+                _ => merged.push(x),
+            }
+        }
+        // The pieces along the line that overlap the open segment.
+        along.retain(|r| r[1] > open[0] && r[0] < open[1]);
+        Some((along, merged))
+    }
+}
+
+/// The membership of an arc on a line `x_f = c`: when no loop crosses the open segment, its
+/// interior is in or out as a whole, decided at its midpoint; when loop pieces along the line
+/// cover the whole segment, it lies on the faces' boundary, in the closed faces.
 fn segment_membership(on: &OnPatch, t: &CurveTopology, a: &Arc, policy: &mut Policy) -> Membership {
-    // The line: the coordinate both ends share exactly (a side, or a dyadic line).
-    let (from, to) = (t.locations[&a.from], t.locations[&a.to]);
-    let Some(f) = (0..2)
-        .find(|&k| from.width(k) == 0.0 && to.width(k) == 0.0 && from.axis(k)[0] == to.axis(k)[0])
-    else {
+    let Some(line) = OnLine::of(t, a) else {
         return Membership::Undecided;
     };
-    let s = 1 - f;
-    let Some(c) = Rational::from_f64(from.axis(f)[0]) else {
-        return Membership::Undecided;
-    };
-    let ends = [t.locations[&a.from].axis(s), t.locations[&a.to].axis(s)];
-    let (low, high) = if ends[0][0] <= ends[1][0] {
-        (ends[0], ends[1])
-    } else {
-        (ends[1], ends[0])
-    };
-    // The open segment's range (between its ends' locations).
-    let open = [low[1], high[0]];
+    let (f, s, open) = (line.f, 1 - line.f, line.open());
     if open[0] >= open[1] {
         return Membership::Undecided;
     }
-    let mut along: Vec<[f64; 2]> = Vec::new();
-    for piece in on.pieces() {
-        let k = piece[f].try_sub(&piece[2].scale(&c)).expect("one degree");
-        if k.is_zero() {
-            // Along the line: it covers at least the range between its ends (continuity).
-            let at = |x: &Rational| {
-                let x = std::slice::from_ref(x);
-                let (v, w) = (piece[s].eval(x), piece[2].eval(x));
-                Rational::from(&v / &w).to_f64()
-            };
-            let (e0, e1) = (at(&Rational::new()), at(&Rational::from(1)));
-            along.push([e0.min(e1), e0.max(e1)]);
-            continue;
-        }
-        let roots = isolate_roots(&k, 52, policy);
-        // Whether the piece's point for t in [lo, hi] may lie on the open segment: exactly
-        // for an exact root, by its enclosure otherwise.
-        // A piece along a line of the other coordinate has that coordinate exactly.
-        let k0 = Rational::from(&piece[s].coeffs()[0] / &piece[2].coeffs()[0]);
-        let constant = piece[s]
-            .try_sub(&piece[2].scale(&k0))
-            .expect("one degree")
-            .is_zero();
-        let end = |e: f64| Rational::from_f64(e).expect("finite");
-        let meets = |lo: &Rational, hi: &Rational| {
-            if constant {
-                return k0 > end(open[0]) && k0 < end(open[1]);
-            }
-            if lo == hi {
-                let x = std::slice::from_ref(lo);
-                let w = piece[2].eval(x);
-                let at = Rational::from(&piece[s].eval(x) / &w);
-                return at > end(open[0]) && at < end(open[1]);
-            }
-            curve_box(&piece, lo, hi).is_none_or(|r| {
-                let x = r.axis(s);
-                x[1] > open[0] && x[0] < open[1]
-            })
-        };
-        if roots
-            .unresolved
-            .iter()
-            .any(|(lo, hi)| meets(&lo.to_rational(), &hi.to_rational()))
-        {
-            return Membership::Undecided;
-        }
-        for root in &roots.roots {
-            let root = refine_root(&k, *root, 1e-13, policy);
-            if meets(&root.lo().to_rational(), &root.hi().to_rational()) {
-                return Membership::Undecided;
-            }
-        }
+    let Some((mut along, crossings)) = line.loops(on, policy) else {
+        return Membership::Undecided;
+    };
+    if !crossings.is_empty() {
+        return Membership::Undecided;
     }
     if !along.is_empty() {
         // Pieces along the line: the segment is in the closed faces when they cover it. A
@@ -379,7 +429,8 @@ fn segment_membership(on: &OnPatch, t: &CurveTopology, a: &Arc, policy: &mut Pol
         };
     }
     let mut mid = Rect::from_axes([0.0, 0.0], [0.0, 0.0]);
-    mid.set_axis(f, from.axis(f));
+    let c = line.c;
+    mid.set_axis(f, [c.lower_f64(), c.upper_f64()]);
     let m = 0.5 * open[0] + 0.5 * open[1];
     mid.set_axis(s, [m, m]);
     // On a side of a face's domain, off its loops: the region inside an outer loop lies in
@@ -573,6 +624,20 @@ fn clip_patch(
             }
         }
     }
+    // 2b. Each arc on a line split around the loops' crossings with it.
+    for k in 0..t.arcs.len() {
+        if t.arcs[k].kind.monotone_axis().is_some() || undecided.contains(&k) {
+            continue;
+        }
+        match split_segment(on, t, k, policy) {
+            Some(middles) => around.extend(middles),
+            None => {
+                out.unresolved
+                    .push((p, t.arcs[k].cell, Reason::TrimCrossingPlace));
+                undecided.insert(k);
+            }
+        }
+    }
     // 3. Every other arc decided at a point of it; the arcs around crossings by their
     //    neighbours.
     let mut decisions: Vec<Decision> = (0..t.arcs.len())
@@ -606,6 +671,94 @@ fn clip_patch(
         };
     }
     decisions
+}
+
+/// Splits the arc `k` on a line at exact dyadic points either side of each crossing of a loop
+/// with its open segment (the arc is replaced by its first piece, the rest appended): the
+/// middle pieces with their boxes (exact segments). The ends of loop pieces along the line are
+/// such crossings too, so that each piece is covered by pieces along the line or meets none.
+/// Nothing to split is an empty list ([`segment_membership`] decides, undecided where a root
+/// is not isolated); `None` if the crossings are not separated from each other and the ends.
+fn split_segment(
+    on: &OnPatch,
+    t: &mut CurveTopology,
+    k: usize,
+    policy: &mut Policy,
+) -> Option<Vec<(usize, Rect)>> {
+    let a = t.arcs[k].clone();
+    let Some(line) = OnLine::of(t, &a) else {
+        return Some(Vec::new());
+    };
+    let Some((_, crossings)) = line.loops(on, policy) else {
+        return Some(Vec::new());
+    };
+    if crossings.is_empty() {
+        return Some(Vec::new());
+    }
+    let (f, s) = (line.f, 1 - line.f);
+    let c = Dyadic::from_rational(&line.c)?;
+    // The levels: s1 < crossing < s2, each pair inside the gap left by the previous one.
+    let reach = 2f64.powi(-30);
+    let mut levels: Vec<[Dyadic; 2]> = Vec::new();
+    let mut floor = line.low[1];
+    for (i, x) in crossings.iter().enumerate() {
+        let ceiling = crossings.get(i + 1).map_or(line.high[0], |y| y[0]);
+        let s1 = dyadic_between(floor.max(x[0] - reach), x[0])?;
+        let s2 = dyadic_between(x[1], ceiling.min(x[1] + reach))?;
+        levels.push([s1, s2]);
+        floor = s2.to_f64();
+    }
+    let (lo_end, hi_end) = {
+        let fr = t.locations[&a.from].axis(s)[0];
+        let to = t.locations[&a.to].axis(s)[0];
+        if fr <= to {
+            (a.from, a.to)
+        } else {
+            (a.to, a.from)
+        }
+    };
+    let point = |x: Dyadic| {
+        let mut uv = [c, c];
+        uv[s] = x;
+        let id = CrossingId::Exact { u: uv[0], v: uv[1] };
+        let r = Rect::from_axes(
+            [uv[0].to_f64_bounds().0, uv[0].to_f64_bounds().1],
+            [uv[1].to_f64_bounds().0, uv[1].to_f64_bounds().1],
+        );
+        (id, r)
+    };
+    let mut chain = vec![lo_end];
+    for [s1, s2] in &levels {
+        for x in [*s1, *s2] {
+            let (id, r) = point(x);
+            t.locations.insert(id, r);
+            chain.push(id);
+        }
+    }
+    chain.push(hi_end);
+    let arc = |from, to| Arc {
+        from,
+        to,
+        cell: a.cell,
+        kind: a.kind,
+    };
+    let mut middles = Vec::new();
+    for (i, w) in chain.windows(2).enumerate() {
+        let piece = arc(w[0], w[1]);
+        if i == 0 {
+            t.arcs[k] = piece;
+        } else {
+            t.arcs.push(piece);
+        }
+        if i % 2 == 1 {
+            let [s1, s2] = levels[i / 2];
+            let mut r = Rect::from_axes([0.0, 0.0], [0.0, 0.0]);
+            r.set_axis(f, [c.to_f64_bounds().0, c.to_f64_bounds().1]);
+            r.set_axis(s, [s1.to_f64_bounds().0, s2.to_f64_bounds().1]);
+            middles.push((t.arcs.len() - 1, r));
+        }
+    }
+    Some(middles)
 }
 
 /// Splits arc `k` of `t` at two dyadic levels of its graph variable either side of the
