@@ -421,30 +421,21 @@ mod tests {
             Some(polygon(&[(1, 1, 8), (7, 1, 8), (7, 7, 8), (1, 7, 8)])),
             vec![polygon(&[(3, 3, 8), (3, 5, 8), (5, 5, 8), (5, 3, 8)])],
         );
+        use Membership::{Inside, Outside, Undecided};
+        let cases = [
+            ([[0.2, 0.3], [0.2, 0.3]], Inside),
+            ([[0.2, 0.2], [0.6, 0.6]], Inside),
+            ([[0.45, 0.55], [0.4, 0.6]], Outside),
+            ([[0.9, 0.95], [0.1, 0.95]], Outside),
+            ([[1.5, 2.0], [0.2, 0.3]], Outside),
+            ([[0.3, 0.4], [0.3, 0.4]], Undecided),
+            ([[0.8, 0.9], [0.2, 0.3]], Undecided),
+            ([[0.0, 0.1], [0.2, 0.3]], Undecided),
+        ];
+        for (b, expected) in cases {
+            assert_eq!(box_in_face(&f, &b), expected, "{b:?}");
+        }
         let b = |u0: f64, u1: f64, v0: f64, v1: f64| [[u0, u1], [v0, v1]];
-        assert_eq!(box_in_face(&f, &b(0.2, 0.3, 0.2, 0.3)), Membership::Inside);
-        assert_eq!(box_in_face(&f, &b(0.2, 0.2, 0.6, 0.6)), Membership::Inside);
-        assert_eq!(
-            box_in_face(&f, &b(0.45, 0.55, 0.4, 0.6)),
-            Membership::Outside
-        );
-        assert_eq!(
-            box_in_face(&f, &b(0.9, 0.95, 0.1, 0.95)),
-            Membership::Outside
-        );
-        assert_eq!(box_in_face(&f, &b(1.5, 2.0, 0.2, 0.3)), Membership::Outside);
-        assert_eq!(
-            box_in_face(&f, &b(0.3, 0.4, 0.3, 0.4)),
-            Membership::Undecided
-        );
-        assert_eq!(
-            box_in_face(&f, &b(0.8, 0.9, 0.2, 0.3)),
-            Membership::Undecided
-        );
-        assert_eq!(
-            box_in_face(&f, &b(0.0, 0.1, 0.2, 0.3)),
-            Membership::Undecided
-        );
         // Just off a loop, on either side.
         let e = 1e-9;
         assert_eq!(

@@ -76,6 +76,18 @@ fn sphere() -> Model {
     m
 }
 
+/// `model` with one face on surface `p` (its domain the unit square).
+fn with_face(mut model: Model, p: usize, outer: Option<TrimLoop>, inner: Vec<TrimLoop>) -> Model {
+    model.faces.push(Face {
+        surface: p,
+        entity: None,
+        domain: unit(),
+        outer,
+        inner,
+    });
+    model
+}
+
 fn view() -> View {
     View::direction([1, 2, 3])
 }
@@ -152,19 +164,17 @@ fn a_half_plane_trim_clips_the_silhouette_at_its_line() {
     // Not dyadic, so that the line is no box edge of the subdivision.
     let c = q((500.0 * (lo + hi)).round() as i64, 1000) + q(1, 3000);
     let cf = c.to_f64();
-    let mut model = sphere();
-    model.faces.push(Face {
-        surface: p,
-        entity: None,
-        domain: unit(),
-        outer: Some(polygon(&[
+    let model = with_face(
+        sphere(),
+        p,
+        Some(polygon(&[
             [q(0, 1), q(0, 1)],
             [c.clone(), q(0, 1)],
             [c.clone(), q(1, 1)],
             [q(0, 1), q(1, 1)],
         ])),
-        inner: Vec::new(),
-    });
+        Vec::new(),
+    );
     let cut = silhouette(&model, &view(), &opts()).unwrap();
     assert!(cut.certified(), "{:?}", cut.unresolved);
     let trims = cut.trims.clone().unwrap();
@@ -225,14 +235,7 @@ fn a_disc_hole_removes_the_silhouette_inside_it() {
     let centre = [m[0], m[1]].map(|x| Rational::from_f64((x * 1024.0).round() / 1024.0).unwrap());
     let (cx, cy) = (centre[0].to_f64(), centre[1].to_f64());
     let r = q(1, 8);
-    let mut model = sphere();
-    model.faces.push(Face {
-        surface: p,
-        entity: None,
-        domain: unit(),
-        outer: None,
-        inner: vec![circle(centre, r, true)],
-    });
+    let model = with_face(sphere(), p, None, vec![circle(centre, r, true)]);
     let cut = silhouette(&model, &view(), &opts()).unwrap();
     assert!(cut.certified(), "{:?}", cut.unresolved);
     let trims = cut.trims.clone().unwrap();
@@ -297,14 +300,7 @@ fn a_face_that_misses_the_silhouette_drops_it_and_a_whole_face_keeps_it() {
     assert!(points(&cut).iter().all(|x| x.0 != p));
     assert!(cut.trims.as_ref().unwrap().dropped_arcs > 0);
     // The face that is the whole domain keeps everything.
-    let mut model = sphere();
-    model.faces.push(Face {
-        surface: p,
-        entity: None,
-        domain: unit(),
-        outer: None,
-        inner: Vec::new(),
-    });
+    let model = with_face(sphere(), p, None, Vec::new());
     let same = silhouette(&model, &view(), &opts()).unwrap();
     assert_eq!(points(&same), points(&whole));
 }
@@ -375,12 +371,10 @@ fn parabolic_lines_of_a_torus_are_clipped_at_a_trim() {
     let c = q((500.0 * (lo + hi)).round() as i64, 1000) + q(1, 3000);
     let cf = c.to_f64();
     let corner = |x: Rational, y: Rational| if axis == 0 { [x, y] } else { [y, x] };
-    let mut model = torus();
-    model.faces.push(Face {
-        surface: p,
-        entity: None,
-        domain: unit(),
-        outer: Some(polygon(&if axis == 0 {
+    let model = with_face(
+        torus(),
+        p,
+        Some(polygon(&if axis == 0 {
             [
                 corner(q(0, 1), q(0, 1)),
                 corner(c.clone(), q(0, 1)),
@@ -395,8 +389,8 @@ fn parabolic_lines_of_a_torus_are_clipped_at_a_trim() {
                 corner(c.clone(), q(0, 1)),
             ]
         })),
-        inner: Vec::new(),
-    });
+        Vec::new(),
+    );
     let cut = limn::parabolic(&model, &opts()).unwrap();
     assert!(cut.certified(), "{:?}", cut.unresolved);
     let trims = cut.trims.clone().unwrap();
