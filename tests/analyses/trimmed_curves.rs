@@ -276,25 +276,23 @@ fn a_face_that_misses_the_silhouette_drops_it_and_a_whole_face_keeps_it() {
     let whole = silhouette(&sphere(), &view(), &opts()).unwrap();
     let (p, _) = busiest(&points(&whole));
     // A tiny square face in a corner the curve does not reach: the arcs on p are dropped.
-    let mut model = sphere();
     let corner = |x: i64, y: i64| [q(x, 1000), q(y, 1000)];
     let far = points(&whole)
         .iter()
         .filter(|x| x.0 == p)
         .all(|x| x.1 > 0.01 || x.2 > 0.01);
     assert!(far, "the curve passes the corner");
-    model.faces.push(Face {
-        surface: p,
-        entity: None,
-        domain: unit(),
-        outer: Some(polygon(&[
+    let model = with_face(
+        sphere(),
+        p,
+        Some(polygon(&[
             corner(1, 1),
             corner(9, 1),
             corner(9, 9),
             corner(1, 9),
         ])),
-        inner: Vec::new(),
-    });
+        Vec::new(),
+    );
     let cut = silhouette(&model, &view(), &opts()).unwrap();
     assert!(cut.certified());
     assert!(points(&cut).iter().all(|x| x.0 != p));
