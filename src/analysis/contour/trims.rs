@@ -482,7 +482,8 @@ pub(crate) fn clip_to_faces(
         if faces.is_empty() || tops[p].arcs.is_empty() || tops[p].identically_zero {
             continue;
         }
-        let Some(params) = &mp.source.parameters else {
+        let degenerate = |p: &[[Rational; 2]; 2]| p.iter().any(|r| r[0] >= r[1]);
+        let Some(params) = mp.source.parameters.as_ref().filter(|p| !degenerate(p)) else {
             for a in std::mem::take(&mut tops[p].arcs) {
                 out.unresolved.push((p, a.cell, Reason::TrimMembership));
             }
