@@ -270,6 +270,17 @@ pub enum Reason {
     /// Whether the arc lies in its surface's faces is not proven (it passes within the
     /// resolution of a trimming curve, or the patch has no parameter map onto its surface).
     TrimMembership,
+    /// Whether a ray's point on a patch lies in the patch's trimmed faces is not proven.
+    HitInFace {
+        /// The patch.
+        patch: usize,
+    },
+    /// Whether a piece of a line lies in its patch's trimmed faces is not proven at any of
+    /// its samples.
+    PieceInFace,
+    /// A crossing of a trimming curve with a patch side or a silhouette is not isolated, or
+    /// the trimming curve's way through the patch is not decided.
+    TrimLine,
     /// No reason was recorded (an unresolved piece whose reason was not carried).
     Unknown,
 }
@@ -508,6 +519,16 @@ impl fmt::Display for Reason {
             ),
             TrimMembership => f.write_str(
                 "whether the arc lies in its surface's trimmed faces is not proven",
+            ),
+            HitInFace { patch } => write!(
+                f,
+                "whether the ray's point on patch {patch} lies in its trimmed faces is not proven (it lies within the resolution of a trimming curve)"
+            ),
+            PieceInFace => f.write_str(
+                "whether the piece lies in its surface's trimmed faces is not proven (its samples lie within the resolution of a trimming curve)",
+            ),
+            TrimLine => f.write_str(
+                "a crossing of a trimming curve with a patch side or the silhouette is not isolated, or where the trimming curve runs through the patch is not decided",
             ),
             Unknown => f.write_str("no reason was recorded"),
         }

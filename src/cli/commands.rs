@@ -351,7 +351,7 @@ pub(crate) fn hlr_command(args: HlrArgs, out: &mut dyn Write) -> Result<(), CliE
     } = args;
     check_run_arguments(&run)?;
     let view = parse_view(view)?;
-    let l = load(&model, &run, None, false)?;
+    let l = load(&model, &run, None, true)?;
     let hopts = HlrOptions {
         curve: l.opts.clone(),
         tol: l.tol_abs,

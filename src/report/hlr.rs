@@ -142,6 +142,12 @@ impl HlrReport {
             "work: {} segments, {} pairs ({} culled, {} monotone), {} penetration systems, {} boxes, {} ray tests ({} refused)\n",
             s.segments, s.pairs, s.culled_pairs, s.monotone_pairs, s.penetration_systems, s.boxes, s.samples, s.refused_samples
         );
+        if s.trim_segments > 0 || s.outside_faces > 0 {
+            t += &format!(
+                "trimmed faces: {} trimming-curve segments, {} crossings with sides and silhouettes, {} pieces outside the faces left out\n",
+                s.trim_segments, s.trim_crossings, s.outside_faces
+            );
+        }
         if s.silhouette_unresolved > 0 {
             t += &format!(
                 "silhouette: {} regions unresolved (lines there are not drawn)\n",

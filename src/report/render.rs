@@ -246,7 +246,7 @@ pub fn hlr_svg(model: &Model, view: &View, h: &HiddenLines, title: &str) -> Stri
         },
         Layer {
             style: r##"stroke="#000" stroke-width="1.0""##,
-            paths: pick(&|p| p.qi == Some(0) && p.kind == LineKind::Boundary),
+            paths: pick(&|p| p.qi == Some(0) && p.kind != LineKind::Silhouette),
             filled: false,
         },
         Layer {

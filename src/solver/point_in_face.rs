@@ -10,7 +10,7 @@
 
 use crate::bernstein::Bernstein;
 use crate::model::{Face, TrimLoop};
-use crate::number::{Interval, Precision, Rational};
+use crate::number::{Interval, Number, Precision, Rational};
 use crate::solver::dyadic::Dyadic;
 use crate::solver::precision::{Escalations, Ladder, Policy};
 use crate::solver::univariate::{isolate_roots, refine_root, Root};
@@ -228,10 +228,12 @@ fn piece_misses(c: &[Bernstein<Interval>; 3], b: &[[f64; 2]; 2], depth: u32) -> 
 }
 
 /// Whether every point of the closed box `b = [[u0, u1], [v0, v1]]` (the surface's parameter
-/// plane) lies in `face`, none does, or that is not proven: when the box lies in the open
-/// domain (or outside the closed one) and provably meets no loop, it is connected and misses
-/// the boundary, so all its points share the membership of its centre
-/// ([`point_in_face`]); otherwise undecided.
+/// plane) lies in `face`, none does, or that is not proven: when the box provably meets no
+/// loop, it is connected and misses the region's boundary, so all its points share one
+/// membership: that of its centre ([`point_in_face`]) when the box lies in the open domain,
+/// outside when the face has an outer loop and the box reaches the domain's boundary (the
+/// region lies in the open domain), outside when it lies outside the closed domain;
+/// otherwise undecided.
 pub fn box_in_face(face: &Face, b: &[[f64; 2]; 2]) -> Membership {
     let d = face.domain.clone().map(|r| r.map(|x| x.to_f64()));
     // The domain's ends rounded to f64 may move by half an ulp: compare with a margin.
@@ -243,7 +245,7 @@ pub fn box_in_face(face: &Face, b: &[[f64; 2]; 2]) -> Membership {
     }
     let inside =
         (0..2).all(|a| b[a][0] > d[a][0] + slack(d[a][0]) && b[a][1] < d[a][1] - slack(d[a][1]));
-    if !inside {
+    if !inside && face.outer.is_none() {
         return Membership::Undecided;
     }
     for l in face.loops() {
@@ -253,6 +255,12 @@ pub fn box_in_face(face: &Face, b: &[[f64; 2]; 2]) -> Membership {
                 return Membership::Undecided;
             }
         }
+    }
+    if !inside {
+        // It reaches the domain's boundary (or past it) and meets no loop: the region inside
+        // the outer loop lies in the open domain (the loop lies in the closed, convex
+        // domain), so the box's points there are outside, and so are all of them.
+        return Membership::Outside;
     }
     let centre =
         |a: usize| Rational::from_f64(0.5 * b[a][0] + 0.5 * b[a][1]).expect("a finite box");
@@ -274,6 +282,118 @@ pub fn box_in_faces<'a>(
         }
     }
     out
+}
+
+/// The faces of a patch's surface, with the affine map of the patch's `[0, 1]²` onto the
+/// surface's parameters (`u = origin + size · s` per axis): what every analysis asks of a
+/// trimmed patch (a box's membership, the loops in the patch's own parameters).
+#[derive(Clone, Debug)]
+pub struct FacesOnPatch {
+    /// The faces of the patch's surface.
+    pub faces: Vec<Face>,
+    /// The surface parameters of the patch's `(0, 0)`.
+    pub origin: [Rational; 2],
+    /// The patch's extent in the surface's parameters, per axis (positive).
+    pub size: [Rational; 2],
+}
+
+/// A patch whose surface has faces but no parameter box of positive size in the surface's
+/// plane: nothing of it can be placed in its faces.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct NoParameterBox;
+
+/// One loop piece of a patch's faces in the patch's own parameters.
+#[derive(Clone, Debug)]
+pub struct PieceOnPatch {
+    /// The face (index into [`crate::model::Model::faces`]).
+    pub face: usize,
+    /// The loop (0: the outer one if the face has one) and the piece in it.
+    pub at: (usize, usize),
+    /// The B-rep edge it lies on, if any.
+    pub edge: Option<usize>,
+    /// `(U, V, W)`: the piece is `(U/W, V/W)` in the patch's parameters, `t ∈ [0, 1]`.
+    pub curve: [Bernstein<Rational>; 3],
+}
+
+impl FacesOnPatch {
+    /// The faces on patch `p` of `model`: `None` if its surface has none.
+    ///
+    /// # Errors
+    /// [`NoParameterBox`] if the patch's box in the surface's parameters is not known or is
+    /// degenerate.
+    pub fn of(
+        model: &crate::model::Model,
+        p: usize,
+    ) -> Option<Result<FacesOnPatch, NoParameterBox>> {
+        let mp = model.patches.get(p)?;
+        let faces: Vec<Face> = model
+            .faces
+            .iter()
+            .filter(|f| f.surface == mp.source.surface)
+            .cloned()
+            .collect();
+        if faces.is_empty() {
+            return None;
+        }
+        let degenerate = |p: &[[Rational; 2]; 2]| p.iter().any(|r| r[0] >= r[1]);
+        let Some(params) = mp.source.parameters.as_ref().filter(|p| !degenerate(p)) else {
+            return Some(Err(NoParameterBox));
+        };
+        Some(Ok(FacesOnPatch {
+            faces,
+            origin: [params[0][0].clone(), params[1][0].clone()],
+            size: [
+                Rational::from(&params[0][1] - &params[0][0]),
+                Rational::from(&params[1][1] - &params[1][0]),
+            ],
+        }))
+    }
+
+    /// An enclosure of a box of patch parameters in the surface's parameters.
+    pub fn surface_box(&self, r: &crate::geometry::Rect) -> [[f64; 2]; 2] {
+        std::array::from_fn(|a| {
+            let o = Interval::from_rational(&self.origin[a], Precision::F64);
+            let s = Interval::from_rational(&self.size[a], Precision::F64);
+            let [lo, hi] = r.axis(a);
+            let x = o.add(&s.mul(&Interval::new(lo, hi)));
+            [x.lo(), x.hi()]
+        })
+    }
+
+    /// The membership of a box of patch parameters ([`box_in_faces`]).
+    pub fn membership(&self, r: &crate::geometry::Rect) -> Membership {
+        box_in_faces(&self.faces, &self.surface_box(r))
+    }
+
+    /// Every loop piece in the patch's parameters, as `(U, V, W)`.
+    pub fn pieces(&self) -> Vec<[Bernstein<Rational>; 3]> {
+        self.pieces_on(&[]).into_iter().map(|p| p.curve).collect()
+    }
+
+    /// Every loop piece in the patch's parameters, with where it comes from; `faces` are the
+    /// indices in the model of [`FacesOnPatch::faces`] (none: numbered from 0).
+    pub fn pieces_on(&self, faces: &[usize]) -> Vec<PieceOnPatch> {
+        let inv = |a: usize| Rational::from(1) / self.size[a].clone();
+        let mut out = Vec::new();
+        for (i, f) in self.faces.iter().enumerate() {
+            for (l, lp) in f.loops().enumerate() {
+                for (k, p) in lp.pieces.iter().enumerate() {
+                    let c = &p.curve;
+                    out.push(PieceOnPatch {
+                        face: faces.get(i).copied().unwrap_or(i),
+                        at: (l, k),
+                        edge: p.edge,
+                        curve: [
+                            c.offset(0, &self.origin[0]).scale(&inv(0)),
+                            c.offset(1, &self.origin[1]).scale(&inv(1)),
+                            c.coordinate(2),
+                        ],
+                    });
+                }
+            }
+        }
+        out
+    }
 }
 
 #[cfg(test)]
@@ -413,8 +533,8 @@ mod tests {
         );
     }
 
-    /// Boxes in a square with a square hole: inside, in the hole, outside, and across each
-    /// loop and the domain's boundary (undecided: a box across a loop is neither).
+    /// Boxes in a square with a square hole: inside, in the hole, outside, across each loop
+    /// (undecided: a box across a loop is neither) and reaching the domain's boundary.
     #[test]
     fn boxes_in_a_square_with_a_hole() {
         let f = face(
@@ -430,7 +550,10 @@ mod tests {
             ([[1.5, 2.0], [0.2, 0.3]], Outside),
             ([[0.3, 0.4], [0.3, 0.4]], Undecided),
             ([[0.8, 0.9], [0.2, 0.3]], Undecided),
-            ([[0.0, 0.1], [0.2, 0.3]], Undecided),
+            // Reaching the domain's side and meeting no loop: outside the outer loop
+            // (proofs/trimmed-faces.md, section 7); reaching it across a loop: undecided.
+            ([[0.0, 0.1], [0.2, 0.3]], Outside),
+            ([[0.0, 0.2], [0.2, 0.3]], Undecided),
         ];
         for (b, expected) in cases {
             assert_eq!(box_in_face(&f, &b), expected, "{b:?}");

@@ -1,7 +1,7 @@
 //! Rational tensor-product Bézier patches.
 
 use crate::bernstein::Bernstein;
-use crate::number::Rational;
+use crate::number::{Interval, Precision, Rational};
 
 /// A point with exact rational coordinates.
 pub type Point3 = [Rational; 3];
@@ -202,6 +202,26 @@ impl RationalPatch {
             coord(2),
             Bernstein::new(&d, self.weights.clone()).expect("counts checked"),
         ]
+    }
+
+    /// An outward enclosure of the patch's points over the parameter box `[lo, hi]` (f64
+    /// ends): the hulls of the homogeneous coordinates restricted to the box, divided by the
+    /// weight's; `None` unless the weight is proven positive there.
+    pub fn enclosure(&self, lo: [f64; 2], hi: [f64; 2]) -> Option<[Interval; 3]> {
+        let h: Vec<Interval> = self
+            .homogeneous()
+            .iter()
+            .map(|p| {
+                p.convert::<Interval>(Precision::F64)
+                    .restrict_box_f64(&lo, &hi)
+                    .hull()
+            })
+            .collect();
+        if h[3].lo() <= 0.0 {
+            return None;
+        }
+        let c = |k: usize| h[k].checked_div(&h[3]);
+        Some([c(0)?, c(1)?, c(2)?])
     }
 
     /// The point S(u, v), exactly.

@@ -329,6 +329,7 @@ fn drawing_to_a_tolerance_on_the_sphere() {
                     .iter()
                     .min_by(|a, b| to_great_circle(mid, **a).total_cmp(&to_great_circle(mid, **b)))
                     .unwrap(),
+                LineKind::Trim => panic!("an untrimmed sphere has no trimming lines"),
             };
             for w in p.points.windows(2) {
                 for k in 0..=8 {

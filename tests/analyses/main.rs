@@ -16,5 +16,7 @@ mod hlr;
 mod invariance;
 mod parabolic;
 mod silhouette;
+mod trim_models;
 mod trimmed_curves;
+mod trimmed_hlr;
 mod visible;

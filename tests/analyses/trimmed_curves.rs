@@ -2,71 +2,11 @@
 //! parameter planes (a half-plane, a disc hole), against the same silhouette untrimmed and
 //! the closed forms of the loops (`proofs/trimmed-faces.md`, 6).
 
-use limn::model::{Closing, Face, Format, Model, TrimLoop};
+use crate::trim_models::{circle, polygon, q, unit, with_face};
+use limn::model::{Format, Model};
 use limn::number::Rational;
-use limn::surface::ParameterCurve;
 use limn::testing::shapes;
 use limn::{silhouette, ContourOptions, View};
-
-fn q(n: i64, d: i64) -> Rational {
-    Rational::from((n, d))
-}
-
-fn unit() -> [[Rational; 2]; 2] {
-    [[q(0, 1), q(1, 1)], [q(0, 1), q(1, 1)]]
-}
-
-fn closed(curves: Vec<ParameterCurve>) -> TrimLoop {
-    let domain = unit();
-    let closing = Closing {
-        tolerance: q(0, 1),
-        domain: &domain,
-        collapsed: [false; 4],
-    };
-    TrimLoop::close(
-        curves.into_iter().map(|c| (c, None)).collect(),
-        &closing,
-        None,
-    )
-    .unwrap()
-}
-
-fn polygon(p: &[[Rational; 2]]) -> TrimLoop {
-    closed(
-        (0..p.len())
-            .map(|i| ParameterCurve::segment(&p[i], &p[(i + 1) % p.len()]))
-            .collect(),
-    )
-}
-
-/// A circle of radius `r` about `c` as four exact rational quadratic arcs, counter-clockwise
-/// (`reverse`: clockwise, as a hole).
-fn circle(c: [Rational; 2], r: Rational, reverse: bool) -> TrimLoop {
-    let at = |x: i64, y: i64| {
-        vec![
-            &c[0] + Rational::from(&r * x),
-            &c[1] + Rational::from(&r * y),
-        ]
-    };
-    let arc = |a: (i64, i64), m: (i64, i64), b: (i64, i64)| {
-        ParameterCurve::new(
-            &[at(a.0, a.1), at(m.0, m.1), at(b.0, b.1)],
-            &[q(1, 1), q(1, 1), q(2, 1)],
-        )
-        .unwrap()
-    };
-    let mut arcs = vec![
-        arc((1, 0), (1, 1), (0, 1)),
-        arc((0, 1), (-1, 1), (-1, 0)),
-        arc((-1, 0), (-1, -1), (0, -1)),
-        arc((0, -1), (1, -1), (1, 0)),
-    ];
-    if reverse {
-        arcs.reverse();
-        arcs = arcs.into_iter().map(|a| a.reversed()).collect();
-    }
-    closed(arcs)
-}
 
 fn sphere() -> Model {
     let mut m = Model::from_patches(Format::Json, shapes::sphere(&q(1, 1)));
@@ -74,18 +14,6 @@ fn sphere() -> Model {
         p.source.parameters = Some(unit());
     }
     m
-}
-
-/// `model` with one face on surface `p` (its domain the unit square).
-fn with_face(mut model: Model, p: usize, outer: Option<TrimLoop>, inner: Vec<TrimLoop>) -> Model {
-    model.faces.push(Face {
-        surface: p,
-        entity: None,
-        domain: unit(),
-        outer,
-        inner,
-    });
-    model
 }
 
 fn view() -> View {

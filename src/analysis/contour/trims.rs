@@ -17,11 +17,11 @@ use crate::analysis::contour::joins::Joins;
 use crate::analysis::projection::fix_axis;
 use crate::bernstein::{compose_homogeneous, Bernstein};
 use crate::geometry::Rect;
-use crate::model::{Face, Model};
+use crate::model::Model;
 use crate::number::{margin, Interval, Number, Precision, Rational};
 use crate::reason::Reason;
 use crate::solver::plane_curve::Arc;
-use crate::solver::point_in_face::{box_in_faces, curve_misses_box, Membership};
+use crate::solver::point_in_face::{box_in_faces, curve_misses_box, FacesOnPatch, Membership};
 use crate::solver::precision::Policy;
 use crate::solver::univariate::{isolate_roots, isolate_roots_in, refine_root};
 use crate::solver::{CrossingId, CurveTopology, Dyadic, DyadicBox};
@@ -40,51 +40,6 @@ pub(crate) struct Clipped {
     pub(crate) crossings: usize,
     /// Arcs dropped as outside the faces.
     pub(crate) dropped: usize,
-}
-
-/// The faces on a patch, with the affine map of the patch's `[0, 1]²` onto the surface's
-/// parameters: `u = origin + size · s` per axis.
-struct OnPatch<'a> {
-    faces: Vec<&'a Face>,
-    origin: [Rational; 2],
-    size: [Rational; 2],
-}
-
-impl OnPatch<'_> {
-    /// An enclosure of a box of patch parameters in the surface's parameters.
-    fn surface_box(&self, r: &Rect) -> [[f64; 2]; 2] {
-        std::array::from_fn(|a| {
-            let o = Interval::from_rational(&self.origin[a], Precision::F64);
-            let s = Interval::from_rational(&self.size[a], Precision::F64);
-            let [lo, hi] = r.axis(a);
-            let x = o.add(&s.mul(&Interval::new(lo, hi)));
-            [x.lo(), x.hi()]
-        })
-    }
-
-    /// The membership of a box of patch parameters.
-    fn membership(&self, r: &Rect) -> Membership {
-        box_in_faces(self.faces.iter().copied(), &self.surface_box(r))
-    }
-
-    /// Every loop piece in the patch's parameters, as `(U, V, W)`.
-    fn pieces(&self) -> Vec<[Bernstein<Rational>; 3]> {
-        let inv = |a: usize| Rational::from(1) / self.size[a].clone();
-        let mut out = Vec::new();
-        for f in &self.faces {
-            for l in f.loops() {
-                for p in &l.pieces {
-                    let c = &p.curve;
-                    out.push([
-                        c.offset(0, &self.origin[0]).scale(&inv(0)),
-                        c.offset(1, &self.origin[1]).scale(&inv(1)),
-                        c.coordinate(2),
-                    ]);
-                }
-            }
-        }
-        out
-    }
 }
 
 /// A dyadic strictly between `a` and `b` (f64 in `[0, 1]`), on the grid `2^-52`.
@@ -169,26 +124,18 @@ fn end_ranges(t: &CurveTopology, a: &Arc, o: usize) -> ([f64; 2], [f64; 2], bool
 
 /// The proven diameter in space of the patch over a box of its parameters.
 fn extent(patch: &RationalPatch, r: &Rect) -> f64 {
-    let hom = patch.homogeneous();
     let lo = [r.axis(0)[0], r.axis(1)[0]];
     let hi = [r.axis(0)[1], r.axis(1)[1]];
-    let h: Vec<Interval> = hom
-        .iter()
-        .map(|p| {
-            p.convert::<Interval>(Precision::F64)
-                .restrict_box_f64(&lo, &hi)
-                .hull()
-        })
-        .collect();
-    if h[3].lo() <= 0.0 {
-        return f64::INFINITY;
-    }
+    patch
+        .enclosure(lo, hi)
+        .map_or(f64::INFINITY, |b| diameter(&b))
+}
+
+/// An upper bound of the diameter of a box in space.
+pub(crate) fn diameter(b: &[Interval; 3]) -> f64 {
     let mut sum = 0.0f64;
-    for x in &h[..3] {
-        let Some(q) = x.checked_div(&h[3]) else {
-            return f64::INFINITY;
-        };
-        let w = margin::up(q.hi() - q.lo(), margin::FEW);
+    for x in b {
+        let w = margin::up(x.hi() - x.lo(), margin::FEW);
         sum = margin::up(sum + margin::up(w * w, margin::FEW), margin::FEW);
     }
     margin::up(sum.sqrt(), margin::FEW)
@@ -249,7 +196,7 @@ enum Decision {
 
 /// The membership of an arc that holds no crossing with a loop: at a point inside it.
 fn arc_membership(
-    on: &OnPatch,
+    on: &FacesOnPatch,
     g: &Bernstein<Rational>,
     t: &CurveTopology,
     a: &Arc,
@@ -316,7 +263,11 @@ impl OnLine {
     /// coordinate is constant, by the enclosure otherwise). `None` if a root is not isolated
     /// where it may lie on the segment.
     #[allow(clippy::type_complexity)]
-    fn loops(&self, on: &OnPatch, policy: &mut Policy) -> Option<(Vec<[f64; 2]>, Vec<[f64; 2]>)> {
+    fn loops(
+        &self,
+        on: &FacesOnPatch,
+        policy: &mut Policy,
+    ) -> Option<(Vec<[f64; 2]>, Vec<[f64; 2]>)> {
         let (f, s, c, open) = (self.f, 1 - self.f, &self.c, self.open());
         let end = |e: f64| Rational::from_f64(e).expect("finite");
         let mut along = Vec::new();
@@ -395,7 +346,12 @@ impl OnLine {
 /// The membership of an arc on a line `x_f = c`: when no loop crosses the open segment, its
 /// interior is in or out as a whole, decided at its midpoint; when loop pieces along the line
 /// cover the whole segment, it lies on the faces' boundary, in the closed faces.
-fn segment_membership(on: &OnPatch, t: &CurveTopology, a: &Arc, policy: &mut Policy) -> Membership {
+fn segment_membership(
+    on: &FacesOnPatch,
+    t: &CurveTopology,
+    a: &Arc,
+    policy: &mut Policy,
+) -> Membership {
     let Some(line) = OnLine::of(t, a) else {
         return Membership::Undecided;
     };
@@ -446,7 +402,7 @@ fn segment_membership(on: &OnPatch, t: &CurveTopology, a: &Arc, policy: &mut Pol
                 Membership::Outside
             }
         } else {
-            box_in_faces([*face], &on.surface_box(&mid))
+            box_in_faces([face], &on.surface_box(&mid))
         };
         match m {
             Membership::Inside => return Membership::Inside,
@@ -472,30 +428,20 @@ pub(crate) fn clip_to_faces(
     }
     let mut removed: Vec<(Node, f64)> = Vec::new();
     for (p, mp) in model.patches.iter().enumerate() {
-        let faces: Vec<&Face> = model
-            .faces
-            .iter()
-            .filter(|f| f.surface == mp.source.surface)
-            .collect();
         // A patch on which the function vanishes identically is reported as degenerate
         // (edge-on) as a whole; there is no curve to clip.
-        if faces.is_empty() || tops[p].arcs.is_empty() || tops[p].identically_zero {
+        if tops[p].arcs.is_empty() || tops[p].identically_zero {
             continue;
         }
-        let degenerate = |p: &[[Rational; 2]; 2]| p.iter().any(|r| r[0] >= r[1]);
-        let Some(params) = mp.source.parameters.as_ref().filter(|p| !degenerate(p)) else {
-            for a in std::mem::take(&mut tops[p].arcs) {
-                out.unresolved.push((p, a.cell, Reason::TrimMembership));
+        let on = match FacesOnPatch::of(model, p) {
+            None => continue,
+            Some(Ok(on)) => on,
+            Some(Err(_)) => {
+                for a in std::mem::take(&mut tops[p].arcs) {
+                    out.unresolved.push((p, a.cell, Reason::TrimMembership));
+                }
+                continue;
             }
-            continue;
-        };
-        let on = OnPatch {
-            faces,
-            origin: [params[0][0].clone(), params[1][0].clone()],
-            size: [
-                Rational::from(&params[0][1] - &params[0][0]),
-                Rational::from(&params[1][1] - &params[1][0]),
-            ],
         };
         let decisions = clip_patch(&on, &mp.surface, &gs[p], &mut tops[p], p, &mut out, policy);
         let t = &mut tops[p];
@@ -537,7 +483,7 @@ pub(crate) fn clip_to_faces(
 /// The decisions for the arcs of one patch (after splitting the arcs that hold crossings;
 /// one per arc of `t` on return).
 fn clip_patch(
-    on: &OnPatch,
+    on: &FacesOnPatch,
     patch: &RationalPatch,
     g: &Bernstein<Rational>,
     t: &mut CurveTopology,
@@ -681,7 +627,7 @@ fn clip_patch(
 /// Nothing to split is an empty list ([`segment_membership`] decides, undecided where a root
 /// is not isolated); `None` if the crossings are not separated from each other and the ends.
 fn split_segment(
-    on: &OnPatch,
+    on: &FacesOnPatch,
     t: &mut CurveTopology,
     k: usize,
     policy: &mut Policy,

@@ -31,9 +31,11 @@ use crate::bernstein::lift;
 use crate::bernstein::Bernstein;
 use crate::bernstein::Poly;
 use crate::geometry::Rect;
+use crate::number::margin;
 use crate::number::{Interval, Number, Precision, Rational};
 use crate::reason::Reason;
 use crate::solver::dyadic::Dyadic;
+use crate::solver::point_in_face::Membership;
 use crate::solver::system::{solve_system_excluding, DyadicBoxN, SystemOptions, SystemRoots};
 use crate::surface::Edge;
 
@@ -42,6 +44,15 @@ use crate::surface::Edge;
 pub enum Sample {
     /// The point of a patch at exact dyadic parameters, not on its silhouette.
     Exact {
+        /// The patch.
+        patch: usize,
+        /// Its parameters.
+        uv: [Rational; 2],
+    },
+    /// A point of a trimming curve of a patch's face at exact parameters, not on its
+    /// silhouette: as [`Sample::Exact`], and a point of another face within the scene's
+    /// [`Scene::trim_contact`] of it is taken to be the point itself (the faces meet there).
+    Trim {
         /// The patch.
         patch: usize,
         /// Its parameters.
@@ -102,7 +113,9 @@ impl Sample {
     pub fn uv_enclosure(&self) -> Rect {
         let r = |q: &Rational| [q.lower_f64(), q.upper_f64()];
         match self {
-            Sample::Exact { uv, .. } => Rect::from_axes(r(&uv[0]), r(&uv[1])),
+            Sample::Exact { uv, .. } | Sample::Trim { uv, .. } => {
+                Rect::from_axes(r(&uv[0]), r(&uv[1]))
+            }
             Sample::Silhouette {
                 axis, at, interval, ..
             } => {
@@ -122,14 +135,16 @@ impl Sample {
     /// The patch the sample lies on.
     pub fn patch(&self) -> usize {
         match self {
-            Sample::Exact { patch, .. } | Sample::Silhouette { patch, .. } => *patch,
+            Sample::Exact { patch, .. }
+            | Sample::Trim { patch, .. }
+            | Sample::Silhouette { patch, .. } => *patch,
         }
     }
 
     fn system(&self, scene: &Scene) -> Option<PointSystem> {
         let im = &scene.images[self.patch()];
         match self {
-            Sample::Exact { uv, .. } => {
+            Sample::Exact { uv, .. } | Sample::Trim { uv, .. } => {
                 let c = |p: &Poly| Bernstein::constant(1, p.eval(uv));
                 Some(PointSystem {
                     nvars: 0,
@@ -250,7 +265,7 @@ pub fn layers(
         // Parameters of the sheets through the sample on this patch, each to be excluded.
         let mut exclude: Vec<DyadicBoxN> = Vec::new();
         match sample {
-            Sample::Exact { uv, .. } => {
+            Sample::Exact { uv, .. } | Sample::Trim { uv, .. } => {
                 let mut carriers: Vec<[Rational; 2]> = Vec::new();
                 if j == own {
                     carriers.push(uv.clone());
@@ -302,7 +317,11 @@ pub fn layers(
         if missed {
             continue;
         }
-        let (front, back) = hits_on_ray(scene, &ps, j, &exclude, opts, behind)?;
+        let contact = match sample {
+            Sample::Trim { uv, .. } if j != own => contact_point(scene, own, uv),
+            _ => None,
+        };
+        let (front, back) = hits_on_ray(scene, &ps, j, &exclude, contact.as_ref(), opts, behind)?;
         count += front;
         if let Ok(all) = &mut hits {
             match back {
@@ -360,6 +379,7 @@ fn hits_on_ray(
     ps: &PointSystem,
     j: usize,
     exclude: &[DyadicBoxN],
+    contact: Option<&[Interval; 3]>,
     opts: &RayOptions,
     want_behind: bool,
 ) -> Result<(usize, Result<Vec<Hit>, Reason>), Reason> {
@@ -386,7 +406,7 @@ fn hits_on_ray(
         .iter()
         .map(|b| ps.domain.iter().chain(b).copied().collect())
         .collect();
-    let decide = |r: &SystemRoots| ray_hits(r, ps, j, jim, &front_i, &exclude);
+    let decide = |r: &SystemRoots| ray_hits(scene, r, ps, j, &front_i, &exclude, contact);
     // Lazily refined: the roots are first refined only to a coarse width; if every decision
     // below holds on those enclosures it is proven (each enclosure holds its root), and only
     // otherwise is the system solved again with the roots refined to the full width. The
@@ -413,19 +433,42 @@ const COARSE_WIDTH: f64 = 1e-6;
 /// What the roots of a point's ray on patch `j` say: how many hits lie in front of the point,
 /// and those behind it (or why they are not proven); an error where a root is not decided.
 fn ray_hits(
+    scene: &Scene,
     r: &SystemRoots,
     ps: &PointSystem,
     j: usize,
-    jim: &ImagePolys,
     front_i: &Bernstein<Interval>,
     exclude: &[DyadicBoxN],
+    contact: Option<&[Interval; 3]>,
 ) -> Result<(usize, Result<Vec<Hit>, Reason>), Reason> {
-    if !r.unresolved.is_empty() {
+    let jim = &scene.images[j];
+    // On a trimmed patch, only the points in its faces are surface (`proofs/hidden-lines.md`,
+    // "Trimmed faces"); an unresolved box outside them holds none.
+    let uv_of = |e: &[[f64; 2]]| Rect::from_axes(e[ps.nvars], e[ps.nvars + 1]);
+    if r.unresolved
+        .iter()
+        .any(|b| scene.membership(j, &uv_of(b)) != Membership::Outside)
+    {
         return Err(Reason::RayIntersections { patch: j });
     }
     let mut count = 0;
     let mut behind: Result<Vec<Hit>, Reason> = Ok(Vec::new());
     for root in &r.roots {
+        let uv = uv_of(&root.enclosure);
+        // A point of another face within the contact distance of a sample on a trimming
+        // curve is the sample's own point (the faces meet there).
+        if let Some(p) = contact {
+            match within(scene, j, &uv, p) {
+                Some(true) => continue,
+                Some(false) => {}
+                None => return Err(Reason::HitInFace { patch: j }),
+            }
+        }
+        match scene.membership(j, &uv) {
+            Membership::Outside => continue,
+            Membership::Undecided => return Err(Reason::HitInFace { patch: j }),
+            Membership::Inside => {}
+        }
         let inside_domain = root.inside;
         let near_excluded = exclude.iter().any(|e| {
             root.enclosure
@@ -469,6 +512,47 @@ fn ray_hits(
         }
     }
     Ok((count, behind))
+}
+
+/// The space point of a sample on a trimming curve, for the contact rule: `None` when the
+/// scene has no faces (no rule).
+fn contact_point(scene: &Scene, own: usize, uv: &[Rational; 2]) -> Option<[Interval; 3]> {
+    let patch = scene.surfaces.get(own)?;
+    let r = |q: &Rational| [q.lower_f64(), q.upper_f64()];
+    let (a, b) = (r(&uv[0]), r(&uv[1]));
+    patch.enclosure([a[0], b[0]], [a[1], b[1]])
+}
+
+/// Whether every point of patch `j` over `uv` lies within the scene's contact distance of
+/// every point of the box `p` (`Some(true)`), none can (`Some(false)`: the nearest points
+/// are farther), or neither is proven (`None`).
+fn within(scene: &Scene, j: usize, uv: &Rect, p: &[Interval; 3]) -> Option<bool> {
+    let q = scene.surfaces.get(j)?.enclosure(
+        [uv.axis(0)[0], uv.axis(1)[0]],
+        [uv.axis(0)[1], uv.axis(1)[1]],
+    )?;
+    let d = scene.trim_contact;
+    let (mut far, mut near) = (0.0f64, 0.0f64);
+    for k in 0..3 {
+        let diff = q[k].sub(&p[k]);
+        let most = diff.lo().abs().max(diff.hi().abs());
+        let least = if diff.lo() > 0.0 {
+            diff.lo()
+        } else if diff.hi() < 0.0 {
+            -diff.hi()
+        } else {
+            0.0
+        };
+        far = margin::up(far + margin::up(most * most, margin::FEW), margin::FEW);
+        near = margin::down(near + margin::down(least * least, margin::FEW), margin::FEW);
+    }
+    if margin::up(far.sqrt(), margin::FEW) <= d {
+        Some(true)
+    } else if margin::down(near.sqrt(), margin::FEW) > d {
+        Some(false)
+    } else {
+        None
+    }
 }
 
 /// An enclosure of `depth / w` on a parameter box (`w > 0`).

@@ -3,9 +3,13 @@
 
 use crate::analysis::projection::{ImagePolys, Projection, ProjectionError};
 use crate::analysis::view::View;
+use crate::geometry::Rect;
 use crate::model::{Model, PatchAdjacency, WeldTolerance};
 use crate::number::{Number, Rational};
-use crate::surface::Edge;
+use crate::solver::point_in_face::{
+    point_in_face, FacesOnPatch, Membership, NoParameterBox, PieceOnPatch,
+};
+use crate::surface::{Edge, RationalPatch};
 
 use crate::bernstein::{Bernstein, Poly};
 use crate::number::{Interval, Precision};
@@ -85,6 +89,23 @@ pub struct Scene {
     /// Per patch, the bounds of the cells of a [`LEAF_GRID`]² grid of its parameter square,
     /// made on first use ([`Scene::leaf_bounds`]).
     leaves: Vec<OnceLock<Vec<ImageBounds>>>,
+    /// Per patch, its trimmed faces ([`Scene::with_faces`]; empty: every patch whole).
+    pub faces: Vec<Option<PatchTrims>>,
+    /// How near another face a point of a trimming curve is taken to lie on it (model
+    /// units; [`Scene::with_faces`]).
+    pub trim_contact: f64,
+    /// The patches, for the space distances of that rule (empty without faces).
+    pub surfaces: Vec<RationalPatch>,
+}
+
+/// The trimmed faces on a patch, with their loop pieces in the patch's parameters.
+#[derive(Clone, Debug)]
+pub struct PatchTrims {
+    /// The faces and the patch's map into their parameter plane; an error if the patch has
+    /// no parameter box on its surface (nothing of it is placed in the faces).
+    pub on: Result<FacesOnPatch, NoParameterBox>,
+    /// The loop pieces in the patch's parameters.
+    pub pieces: Vec<PieceOnPatch>,
 }
 
 /// Cells per side of the grid of [`Scene::leaf_bounds`].
@@ -126,7 +147,107 @@ impl Scene {
             jacobians,
             adjacency,
             leaves,
+            faces: Vec::new(),
+            trim_contact: 0.0,
+            surfaces: Vec::new(),
         })
+    }
+
+    /// The scene with every patch restricted to the trimmed faces of its surface (a patch
+    /// whose surface has none is whole); a point of a trimming curve is taken to be the same
+    /// point as any point of another face within `contact` of it.
+    pub fn with_faces(mut self, model: &Model, contact: f64) -> Scene {
+        self.trim_contact = contact;
+        self.surfaces = model.patches.iter().map(|p| p.surface.clone()).collect();
+        self.faces = (0..model.patches.len())
+            .map(|p| {
+                let on = FacesOnPatch::of(model, p)?;
+                let pieces = match &on {
+                    Ok(on) => {
+                        let ids: Vec<usize> = model
+                            .faces
+                            .iter()
+                            .enumerate()
+                            .filter(|(_, f)| f.surface == model.patches[p].source.surface)
+                            .map(|(i, _)| i)
+                            .collect();
+                        on.pieces_on(&ids)
+                    }
+                    Err(_) => Vec::new(),
+                };
+                Some(PatchTrims { on, pieces })
+            })
+            .collect();
+        self
+    }
+
+    /// Whether patch `j` is restricted to trimmed faces.
+    pub fn trimmed(&self, j: usize) -> bool {
+        self.faces.get(j).is_some_and(Option::is_some)
+    }
+
+    /// Whether an exact point of patch `j`'s parameters lies on a loop piece that runs along a
+    /// parameter line through it ([`on_piece_along_line`]): a point of a trimming curve.
+    pub fn on_trim(&self, j: usize, uv: &[Rational; 2]) -> bool {
+        let Some(Some(t)) = self.faces.get(j) else {
+            return false;
+        };
+        t.pieces.iter().any(|p| on_piece_along_line(&p.curve, uv))
+    }
+
+    /// Whether a box of patch `j`'s parameters lies in its faces ([`crate::solver::point_in_face::box_in_faces`]; inside
+    /// for a patch used whole).
+    pub fn membership(&self, j: usize, r: &Rect) -> Membership {
+        match self.faces.get(j) {
+            Some(Some(t)) => match &t.on {
+                Ok(on) => on.membership(r),
+                Err(_) => Membership::Undecided,
+            },
+            _ => Membership::Inside,
+        }
+    }
+
+    /// Whether an exact point of patch `j`'s parameters lies in its closed faces: on a loop
+    /// piece that runs along a parameter line through it (between the piece's ends) it does;
+    /// otherwise as [`Scene::membership`] of the point.
+    pub fn point_membership(&self, j: usize, uv: &[Rational; 2]) -> Membership {
+        if self.on_trim(j, uv) {
+            return Membership::Inside;
+        }
+        let Some(Some(t)) = self.faces.get(j) else {
+            return Membership::Inside;
+        };
+        let Ok(on) = &t.on else {
+            return Membership::Undecided;
+        };
+        let p: [Rational; 2] =
+            std::array::from_fn(|a| &on.origin[a] + Rational::from(&on.size[a] * &uv[a]));
+        let mut out = Membership::Outside;
+        for face in &on.faces {
+            let d = &face.domain;
+            let outside = (0..2).any(|a| p[a] < d[a][0] || p[a] > d[a][1]);
+            let on_side = (0..2).any(|a| p[a] == d[a][0] || p[a] == d[a][1]);
+            let m = if outside {
+                Membership::Outside
+            } else if on_side {
+                // Off the loops: the region inside an outer loop lies in the open domain (the
+                // loop lies in the closed, convex domain); without one, the domain's boundary
+                // bounds the face.
+                if face.outer.is_some() {
+                    Membership::Outside
+                } else {
+                    Membership::Inside
+                }
+            } else {
+                point_in_face(face, &p)
+            };
+            match m {
+                Membership::Inside => return Membership::Inside,
+                Membership::Undecided => out = Membership::Undecided,
+                Membership::Outside => {}
+            }
+        }
+        out
     }
 
     /// Outward image and depth bounds of patch `j` on each cell `[a/n, (a+1)/n] × [b/n,
@@ -182,6 +303,30 @@ impl Scene {
         }
         Vec::new()
     }
+}
+
+/// Whether `uv` lies on the curve `(U/W, V/W)`, `t ∈ [0, 1]`, where the curve runs along the
+/// parameter line through `uv` (`U − u W ≡ 0` or `V − v W ≡ 0`) and the other coordinate of
+/// `uv` lies between the curve's ends (the curve is connected, so it passes there).
+pub fn on_piece_along_line(c: &[Bernstein<Rational>; 3], uv: &[Rational; 2]) -> bool {
+    let (zero, one) = (Rational::new(), Rational::from(1));
+    (0..2).any(|a| {
+        let along = c[a].try_sub(&c[2].scale(&uv[a])).is_ok_and(|d| d.is_zero());
+        if !along {
+            return false;
+        }
+        let o = 1 - a;
+        let end = |t: &Rational| {
+            let at = std::slice::from_ref(t);
+            let w = c[2].eval(at);
+            (w > 0).then(|| Rational::from(&c[o].eval(at) / &w))
+        };
+        let (Some(e0), Some(e1)) = (end(&zero), end(&one)) else {
+            return false;
+        };
+        let (lo, hi) = if e0 <= e1 { (e0, e1) } else { (e1, e0) };
+        lo <= uv[o] && uv[o] <= hi
+    })
 }
 
 #[cfg(test)]

@@ -14,8 +14,9 @@ use crate::solver::system::DyadicBoxN;
 pub(crate) fn range_on(p: &Bernstein<Interval>, lo: &[f64], hi: &[f64]) -> Interval {
     p.restrict_box_f64(lo, hi).hull()
 }
-/// The box `[lo − 2^-k, hi + 2^-k] ∩ [0, 1]²` around a dyadic parameter box (`None` if a
-/// corner is not dyadic).
+/// The box `[lo − 2^-k, hi + 2^-k] ∩ [0, 1]²` around a parameter box, its corners rounded
+/// outwards to the grid `2^-(k+8)` when they are not dyadic (a point of a trimming curve):
+/// it holds `[lo, hi]` with a margin of at least `2^-k − 2^-(k+8)`.
 fn box_around(lo: &[Rational; 2], hi: &[Rational; 2], k: u32) -> Option<DyadicBoxN> {
     let mut r = Rational::from(1);
     r >>= k;
@@ -30,8 +31,21 @@ fn box_around(lo: &[Rational; 2], hi: &[Rational; 2], k: u32) -> Option<DyadicBo
     };
     (0..2)
         .map(|a| {
-            let l = clamp(Rational::from(&lo[a] - &r));
-            let h = clamp(Rational::from(&hi[a] + &r));
+            let grid = |x: Rational, up: bool| -> Rational {
+                if dy(&x).is_some() {
+                    return x;
+                }
+                let mut y = Rational::from(&x << (k + 8));
+                y = if up {
+                    Rational::from(y.ceil_ref())
+                } else {
+                    Rational::from(y.floor_ref())
+                };
+                y >>= k + 8;
+                y
+            };
+            let l = clamp(grid(Rational::from(&lo[a] - &r), false));
+            let h = clamp(grid(Rational::from(&hi[a] + &r), true));
             Some((dy(&l)?, dy(&h)?))
         })
         .collect()

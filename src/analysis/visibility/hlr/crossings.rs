@@ -19,8 +19,10 @@ use crate::analysis::visibility::hlr::systems::{
 };
 use crate::analysis::visibility::hlr::HlrOptions;
 use crate::analysis::visibility::scene::Scene;
+use crate::geometry::Rect;
 use crate::reason::Reason;
 use crate::solver::dyadic::Dyadic;
+use crate::solver::point_in_face::Membership;
 use crate::solver::system::separable::solve_separable;
 use crate::solver::system::{solve_system, DyadicBoxN, SystemRoots};
 use rayon::prelude::*;
@@ -59,6 +61,10 @@ pub(super) fn crossings(
             break;
         }
         let b = vec![(cell.lo[0], cell.hi[0]), (cell.lo[1], cell.hi[1])];
+        // A region outside the patch's faces holds nothing drawn.
+        if scene.membership(*p, &cell.to_f64()) == Membership::Outside {
+            continue;
+        }
         let bounds = bounds_on(&scene.images[*p], &b);
         for (k, sg) in segments.iter().enumerate() {
             if sg.bounds.meets_image(&bounds) {
@@ -114,7 +120,10 @@ pub(super) fn crossings(
             jobs.push(Job::Pair(a, b));
         }
         for (j, jb) in scene.bounds.iter().enumerate() {
-            if sa.on.iter().any(|x| x.0 == j) || sa.on.iter().any(|x| adjacent(scene, x.0, j)) {
+            if sa.on.iter().any(|x| x.0 == j)
+                || sa.touches.contains(&j)
+                || sa.on.iter().any(|x| adjacent(scene, x.0, j))
+            {
                 continue;
             }
             let overlap_depth =
@@ -187,7 +196,12 @@ pub(super) fn crossings(
         stats.boxes += r.boxes;
         stats.escalations.merge(&r.escalations);
         if let Job::Penetration(a, j) = *job {
-            for &(p, _, _) in segments[a].on.iter().filter(|_| !r.roots.is_empty()) {
+            let na = segments[a].domain.len();
+            let inside = |e: &Vec<[f64; 2]>| {
+                scene.membership(j, &Rect::from_axes(e[na], e[na + 1])) != Membership::Outside
+            };
+            let found = r.roots.iter().any(|x| inside(&x.enclosure));
+            for &(p, _, _) in segments[a].on.iter().filter(|_| found) {
                 intersecting.insert([p.min(j), p.max(j)]);
             }
         }
@@ -209,8 +223,33 @@ pub(super) fn crossings(
                 Reason::PenetrationNotIsolated { patch: j },
             ),
         };
+        // A point of the system where a line, or the patch passed through, lies outside its
+        // trimmed faces holds no crossing of what is drawn.
+        let outside = |bx: &[[f64; 2]]| -> bool {
+            match *job {
+                Job::Pair(a, b) => {
+                    let na = segments[a].domain.len();
+                    outside_faces(scene, &segments[a], &bx[..na])
+                        || outside_faces(scene, &segments[b], &bx[na..])
+                }
+                Job::SelfCrossing(a) => {
+                    let na = segments[a].domain.len();
+                    outside_faces(scene, &segments[a], &bx[..na])
+                        || outside_faces(scene, &segments[a], &bx[na..])
+                }
+                Job::Penetration(a, j) => {
+                    let na = segments[a].domain.len();
+                    let uv = Rect::from_axes(bx[na], bx[na + 1]);
+                    outside_faces(scene, &segments[a], &bx[..na])
+                        || scene.membership(j, &uv) == Membership::Outside
+                }
+            }
+        };
         // A crossing cuts a segment only if the other segment can change its QI there.
         let counts = |bx: &[[f64; 2]], s: usize| -> bool {
+            if outside(bx) {
+                return false;
+            }
             match *job {
                 Job::Pair(a, b) => {
                     let na = segments[a].domain.len();
@@ -302,6 +341,40 @@ impl Event {
             at,
             unresolved: Some(why),
         }
+    }
+}
+
+/// Whether the points of a segment over a box of its variables are proven outside its
+/// patch's trimmed faces (never for a trimming curve, which bounds them).
+fn outside_faces(scene: &Scene, s: &Segment, bx: &[[f64; 2]]) -> bool {
+    if s.curve.is_some() || !scene.trimmed(s.patch) {
+        return false;
+    }
+    let uv = match (s.line, s.edge, bx) {
+        (Some((axis, at)), _, [t]) => {
+            let mut r = Rect::from_axes(*t, *t);
+            let c = at.to_f64();
+            r.set_axis(axis, [c, c]);
+            r
+        }
+        (None, Some(edge), [t]) if s.constraint.is_none() => {
+            let (a, b) = (side_point_f64(edge, t[0]), side_point_f64(edge, t[1]));
+            Rect::point(a).hull(&Rect::point(b))
+        }
+        (None, _, [u, v]) => Rect::from_axes(*u, *v),
+        _ => return false,
+    };
+    scene.membership(s.patch, &uv) == Membership::Outside
+}
+
+/// The point of a side at parameter `t`, in f64 (exact: the side's coordinates are 0, 1, t).
+fn side_point_f64(edge: crate::surface::Edge, t: f64) -> [f64; 2] {
+    use crate::surface::Edge;
+    match edge {
+        Edge::V0 => [t, 0.0],
+        Edge::V1 => [t, 1.0],
+        Edge::U0 => [0.0, t],
+        Edge::U1 => [1.0, t],
     }
 }
 

@@ -23,8 +23,14 @@ pub(super) struct PieceEnd {
     pub(super) segment_end: bool,
 }
 
-/// The point in (u, v) of a line segment (a side, or a line of constant u or v) at parameter t.
+/// The point in (u, v) of a line segment (a side, a line of constant u or v, or a trimming
+/// curve, in f64) at parameter t.
 fn line_uv(s: &Segment, t: f64) -> Option<[f64; 2]> {
+    if let Some(c) = &s.curve {
+        let f = |p: &crate::bernstein::Poly| p.convert::<f64>(Precision::F64).eval(&[t]);
+        let w = f(&c[2]);
+        return (w > 0.0).then(|| [f(&c[0]) / w, f(&c[1]) / w]);
+    }
     if let Some(edge) = s.edge.filter(|_| s.constraint.is_none()) {
         return Some(match edge {
             Edge::V0 => [t, 0.0],
@@ -164,6 +170,140 @@ pub(super) fn traced_points(
         .points
         .iter()
         .map(|p| (s.patch, p[0], p[1]))
+        .collect();
+    (bound <= tol).then_some(((uv, points), bound))
+}
+
+/// The points of a trimming piece drawn within `tol` in space, with the proven bound on the
+/// Hausdorff distance between the polyline and the true piece (`proofs/hidden-lines.md`,
+/// "Drawing to a tolerance"): the patch composed with the curve is an exact rational space
+/// curve in `t`; on each parameter interval its control points' boxes (weights proven
+/// positive) hold it, so its distance to the drawn chord is at most the largest distance
+/// of a box to the chord, and every point of the chord lies within that plus twice the
+/// chord ends' rounding of the curve (the curve's projection onto the chord's line covers
+/// it). Intervals are halved until that holds; the true ends lie in the pieces' end
+/// intervals, whose extents are added. `None` if not within `tol`.
+pub(super) fn traced_curve(
+    s: &Segment,
+    surface: &crate::surface::RationalPatch,
+    from: PieceEnd,
+    to: PieceEnd,
+    tol: f64,
+) -> Option<(Drawn, f64)> {
+    use crate::bernstein::{compose_homogeneous, Bernstein};
+    use crate::number::Interval;
+    let c = s.curve.as_ref()?;
+    let hom = surface.homogeneous();
+    let space: Vec<Bernstein<Interval>> = hom
+        .iter()
+        .map(|h| compose_homogeneous(h, [&c[0], &c[1], &c[2]]).convert(Precision::F64))
+        .collect();
+    // The control points' boxes over [t0, t1].
+    let boxes = |t0: f64, t1: f64| -> Option<Vec<[Interval; 3]>> {
+        let r: Vec<Bernstein<Interval>> = space
+            .iter()
+            .map(|p| p.restrict_box_f64(&[t0], &[t1]))
+            .collect();
+        let n = r[3].coeffs().len();
+        (0..n)
+            .map(|i| {
+                let w = r[3].coeffs()[i];
+                if w.lo() <= 0.0 {
+                    return None;
+                }
+                Some([0, 1, 2].map(|k| r[k].coeffs()[i].checked_div(&w)))
+                    .and_then(|b| Some([b[0]?, b[1]?, b[2]?]))
+            })
+            .collect()
+    };
+    let mid = |b: &[Interval; 3]| b.map(|x| 0.5 * x.lo() + 0.5 * x.hi());
+    let sup = |x: &Interval| x.lo().abs().max(x.hi().abs());
+    let norm_up = |v: [Interval; 3]| -> f64 {
+        let mut sum = 0.0f64;
+        for x in &v {
+            let m = sup(x);
+            sum = margin::up(sum + margin::up(m * m, margin::FEW), margin::FEW);
+        }
+        margin::up(sum.sqrt(), margin::FEW)
+    };
+    // The extent of the curve over an end's interval.
+    let extent = |at: [f64; 2]| -> Option<f64> {
+        if at[0] >= at[1] {
+            return Some(0.0);
+        }
+        let b = boxes(at[0], at[1])?;
+        let lo: [f64; 3] =
+            std::array::from_fn(|k| b.iter().map(|x| x[k].lo()).fold(f64::INFINITY, f64::min));
+        let hi: [f64; 3] = std::array::from_fn(|k| {
+            b.iter()
+                .map(|x| x[k].hi())
+                .fold(f64::NEG_INFINITY, f64::max)
+        });
+        Some(norm_up(std::array::from_fn(|k| {
+            Interval::new(0.0, margin::up(hi[k] - lo[k], margin::FEW))
+        })))
+    };
+    let ends = extent(from.at)?.max(extent(to.at)?);
+    let (a, b) = (from.at[0], to.at[1]);
+    if a.partial_cmp(&b) != Some(std::cmp::Ordering::Less) || ends > tol {
+        return None;
+    }
+    let budget = tol - ends;
+    // The chord deviation and the ends' rounding of one interval.
+    let deviation = |t0: f64, t1: f64| -> Option<(f64, [f64; 3], [f64; 3])> {
+        let bx = boxes(t0, t1)?;
+        let (d0, d1) = (mid(&bx[0]), mid(bx.last()?));
+        let e = |p: &[Interval; 3], d: &[f64; 3]| {
+            norm_up(std::array::from_fn(|k| p[k].sub(&Interval::point(d[k]))))
+        };
+        let round = e(&bx[0], &d0).max(e(bx.last()?, &d1));
+        let dir: [f64; 3] = std::array::from_fn(|k| d1[k] - d0[k]);
+        let len2: f64 = dir.iter().map(|x| x * x).sum();
+        let mut worst = 0.0f64;
+        for p in &bx {
+            let m = mid(p);
+            let lambda = if len2 > 0.0 {
+                ((0..3).map(|k| (m[k] - d0[k]) * dir[k]).sum::<f64>() / len2).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            let l = Interval::point(lambda);
+            let y: [Interval; 3] = std::array::from_fn(|k| {
+                Interval::point(d0[k])
+                    .add(&l.mul(&Interval::point(d1[k]).sub(&Interval::point(d0[k]))))
+            });
+            worst = worst.max(norm_up(std::array::from_fn(|k| p[k].sub(&y[k]))));
+        }
+        Some((margin::up(worst + 2.0 * round, margin::FEW), d0, d1))
+    };
+    let mut points: Vec<[f64; 3]> = Vec::new();
+    let mut params: Vec<f64> = Vec::new();
+    let mut bound = 0.0f64;
+    let mut stack = vec![(a, b, 0u32)];
+    while let Some((t0, t1, depth)) = stack.pop() {
+        let (dev, d0, d1) = deviation(t0, t1)?;
+        if dev <= budget {
+            if points.is_empty() {
+                points.push(d0);
+                params.push(t0);
+            }
+            points.push(d1);
+            params.push(t1);
+            bound = bound.max(dev);
+            continue;
+        }
+        let m = 0.5 * t0 + 0.5 * t1;
+        if depth >= 40 || !(t0 < m && m < t1) || points.len() > 1 << 20 {
+            return None;
+        }
+        // Right half below the left so the left is drawn first.
+        stack.push((m, t1, depth + 1));
+        stack.push((t0, m, depth + 1));
+    }
+    let bound = margin::up(bound + ends, margin::FEW);
+    let uv = params
+        .iter()
+        .filter_map(|t| line_uv(s, *t).map(|p| (s.patch, p[0], p[1])))
         .collect();
     (bound <= tol).then_some(((uv, points), bound))
 }

@@ -73,6 +73,12 @@ pub(super) struct Segment {
     /// For a silhouette line inside its patch (where the silhouette function vanishes
     /// identically): the fixed variable and its value; the segment's parameter is the other.
     pub(super) line: Option<(usize, Dyadic)>,
+    /// For a trimming curve: the curve `(U, V, W)` in the patch's parameters, in the
+    /// segment's parameter `t` (`(u, v) = (U/W, V/W)`).
+    pub(super) curve: Option<[Poly; 3]>,
+    /// Other patches the segment lies on without being a curve of theirs (the faces across a
+    /// B-rep edge): not searched for penetrations.
+    pub(super) touches: Vec<usize>,
 }
 
 /// Where a vertex of the line network is.
@@ -86,6 +92,16 @@ pub(super) enum Key {
     Inner { patch: usize, id: CrossingId },
     /// A point where an arc was cut to make its pieces' images monotone (a unique id).
     Param { id: usize },
+    /// The point where piece `k` of loop `lp` of a face starts (and piece `k − 1` ends).
+    Joint { face: usize, lp: usize, k: usize },
+    /// A point of a loop piece where it crosses a patch side or a silhouette, by its
+    /// parameter interval on the piece.
+    Trim {
+        face: usize,
+        lp: usize,
+        piece: usize,
+        t: [f64; 2],
+    },
 }
 
 /// A vertex of a segment.
@@ -107,6 +123,32 @@ impl Key {
             }
             (Key::Inner { patch: a, id: x }, Key::Inner { patch: b, id: y }) => a == b && x == y,
             (Key::Param { id: a }, Key::Param { id: b }) => a == b,
+            (
+                Key::Joint {
+                    face: f,
+                    lp: l,
+                    k: a,
+                },
+                Key::Joint {
+                    face: g,
+                    lp: m,
+                    k: b,
+                },
+            ) => f == g && l == m && a == b,
+            (
+                Key::Trim {
+                    face: f,
+                    lp: l,
+                    piece: a,
+                    t: s,
+                },
+                Key::Trim {
+                    face: g,
+                    lp: m,
+                    piece: b,
+                    t: u,
+                },
+            ) => f == g && l == m && a == b && s[0] <= u[1] && u[0] <= s[1],
             _ => false,
         }
     }
@@ -446,6 +488,8 @@ fn silhouette_segments(
                     vertices,
                     on: vec![(i, None, false)],
                     line: None,
+                    curve: None,
+                    touches: Vec::new(),
                 };
                 // Along the branch, vertex a comes first.
                 let forward = whole.vertices[0].param[0] <= whole.range[0];
@@ -594,6 +638,9 @@ pub(super) fn narrow_to_curve(g: &Poly, domain: &DyadicBoxN, axis: usize) -> Dya
 /// segment lies on `p` and meets `b`.
 pub(super) fn sub_domain(s: &Segment, p: usize, b: &DyadicBoxN) -> Option<DyadicBoxN> {
     let &(_, edge, rev) = s.on.iter().find(|x| x.0 == p)?;
+    if let Some(c) = &s.curve {
+        return crate::analysis::visibility::hlr::trim_lines::curve_sub_domain(s, c, b);
+    }
     if let Some((axis, at)) = s.line {
         if !(b[axis].0 <= at && at <= b[axis].1) {
             return None;
@@ -802,6 +849,8 @@ fn exact_curve(
         vertices,
         on,
         line,
+        curve: None,
+        touches: Vec::new(),
     }
 }
 

@@ -37,6 +37,7 @@ mod pieces;
 mod result;
 mod roles;
 mod systems;
+mod trim_lines;
 
 pub use result::{Behind, HiddenLines, HlrPiece, HlrStats, LineKind, ADJACENT_ASSUMPTION};
 
@@ -44,6 +45,7 @@ use crossings::crossings;
 use lines::candidate_lines;
 use pieces::all_pieces;
 use roles::line_roles;
+use trim_lines::trim_lines;
 
 use crate::analysis::contour::drawing::refined_for;
 use crate::analysis::contour::silhouette::silhouette_curves;
@@ -86,6 +88,11 @@ pub struct HlrOptions {
     /// How patch boundaries are matched into shared edges; `None`: the model's default
     /// ([`crate::model::default_weld`]).
     pub weld: Option<WeldTolerance>,
+    /// Restrict every patch to the trimmed faces of its surface ([`Model::faces`]): the
+    /// trimming curves are lines, every other line is drawn only inside the faces, and ray
+    /// tests count only points inside them. Off: every surface whole (as the visible
+    /// regions still take it).
+    pub trims: bool,
 }
 
 impl HlrOptions {
@@ -112,6 +119,7 @@ impl Default for HlrOptions {
             clusters: true,
             behind: false,
             weld: None,
+            trims: true,
         }
     }
 }
@@ -150,7 +158,10 @@ fn drawing(model: &Model, view: &View, opts: &HlrOptions) -> Result<HiddenLines,
     let weld = opts
         .weld
         .unwrap_or_else(|| crate::model::default_weld(model));
-    let scene = Scene::new(model, view, weld)?;
+    let mut scene = Scene::new(model, view, weld)?;
+    if opts.trims {
+        scene = scene.with_faces(model, trim_contact(model, weld));
+    }
     // With a tolerance, the arcs' ends are located finely enough for it.
     let curve = refined_for(&opts.curve, model, opts.tol);
     let sil = silhouette_curves(
@@ -167,18 +178,33 @@ fn drawing(model: &Model, view: &View, opts: &HlrOptions) -> Result<HiddenLines,
         ..HlrStats::default()
     };
     // 1. The candidate lines, cut into segments.
-    let segments = candidate_lines(
+    let mut policy =
+        Policy::new(&opts.curve.ladder, &mut stats.escalations).with_deadline(opts.curve.deadline);
+    let mut segments = candidate_lines(&scene, &sil, &mut policy);
+    // 1b. The trimming curves, and the other lines cut where they cross them.
+    let first_chain = segments.iter().map(|s| s.chain + 1).max().unwrap_or(0);
+    let mut next_id = 1 << 40;
+    let trims = trim_lines(
         &scene,
+        model,
         &sil,
-        &mut Policy::new(&opts.curve.ladder, &mut stats.escalations)
-            .with_deadline(opts.curve.deadline),
+        &mut segments,
+        first_chain,
+        &mut next_id,
+        &mut policy,
     );
+    stats.trim_segments = trims.segments.len();
+    stats.trim_crossings = trims.crossings;
+    segments.extend(trims.segments);
     stats.segments = segments.len();
     // 2. Which stretches of them are outline.
     let roles = line_roles(&scene, &segments, opts);
     stats.cluster_edges = roles.cluster_edges();
     // 3. Where the QI along them can change.
-    let found = crossings(&scene, &sil, &segments, &roles, opts, &mut stats);
+    let mut found = crossings(&scene, &sil, &segments, &roles, opts, &mut stats);
+    for (k, e) in trims.events {
+        found.events[k].push(e);
+    }
     // 4. The pieces between, their QI, drawn.
     let pieces = all_pieces(
         model,
@@ -212,6 +238,9 @@ fn drawing(model: &Model, view: &View, opts: &HlrOptions) -> Result<HiddenLines,
     if let WeldTolerance::Absolute(d) = weld {
         assumptions.push(weld_assumption(d));
     }
+    if scene.faces.iter().any(Option::is_some) {
+        assumptions.push(trim_assumption(scene.trim_contact));
+    }
     Ok(HiddenLines {
         pieces,
         facing: facing_types,
@@ -220,6 +249,24 @@ fn drawing(model: &Model, view: &View, opts: &HlrOptions) -> Result<HiddenLines,
         intersecting_patches: found.intersecting.into_iter().collect(),
         tolerance: opts.tol,
     })
+}
+
+/// How near another face a point of a trimming curve is taken to lie on it: the weld
+/// distance, and at least 2^-30 of the model's diagonal (exact data meet exactly, and no
+/// interval test can prove a distance of zero).
+fn trim_contact(model: &Model, weld: WeldTolerance) -> f64 {
+    let floor = model.diagonal() * 2f64.powi(-30);
+    match weld {
+        WeldTolerance::Absolute(d) => d.max(floor),
+        WeldTolerance::Exact => floor,
+    }
+}
+
+/// The assumption of a drawing on trimmed faces.
+pub fn trim_assumption(d: f64) -> String {
+    format!(
+        "faces meet only along the trimming curves the file gives them (the curves of a B-rep edge on its faces are one curve in space: it is drawn once and not searched for penetrations of the faces it bounds), and a point of a trimming curve is the same point as any point of another face within {d:.3e} of it (the faces meet there)"
+    )
 }
 
 /// The assumption of a tolerance weld: sides matched within `d` are one edge, and a side whose

@@ -12,15 +12,18 @@ use crate::analysis::visibility::hlr::crossings::Event;
 use crate::analysis::visibility::hlr::result::HlrStats;
 use crate::analysis::visibility::hlr::result::{Behind, HlrPiece, LineKind};
 use crate::analysis::visibility::hlr::roles::Roles;
+use crate::analysis::visibility::hlr::trim_lines::point_at;
 use crate::analysis::visibility::hlr::HlrOptions;
 use crate::analysis::visibility::ray::{fix_axis, layers, Sample};
 use crate::analysis::visibility::scene::Scene;
+use crate::geometry::Rect;
 use crate::model::Model;
 use crate::number::Rational;
 use crate::reason::Reason;
+use crate::solver::point_in_face::Membership;
 use crate::solver::precision::{Escalations, Policy};
 use crate::solver::univariate::{isolate_roots_in, refine_root, Root};
-use crate::surface::DrawPatch;
+use crate::surface::{DrawPatch, RationalPatch};
 use rayon::prelude::*;
 
 /// The dyadic with the smallest denominator in the open interval `(lo, hi)` (lo < hi).
@@ -72,7 +75,17 @@ pub(super) fn all_pieces(
         .zip(roles.inner.par_iter().zip(roles.folds.par_iter()))
         .map(|((s, ev), (inner, folds))| {
             let acc = accuracy[s.patch].as_ref();
-            pieces_of(scene, s, ev, &draws[s.patch], acc, [inner, folds], opts)
+            let surface = &model.patches[s.patch].surface;
+            pieces_of(
+                scene,
+                s,
+                surface,
+                ev,
+                &draws[s.patch],
+                acc,
+                [inner, folds],
+                opts,
+            )
         })
         .collect();
     let mut pieces = Vec::new();
@@ -80,6 +93,7 @@ pub(super) fn all_pieces(
         pieces.extend(p);
         stats.samples += tally.samples;
         stats.refused_samples += tally.refused;
+        stats.outside_faces += tally.outside;
         stats.escalations.merge(&tally.escalations);
     }
     pieces
@@ -95,9 +109,11 @@ pub(crate) struct Stretch {
 }
 /// The pieces of a segment between its events, with their QI, drawn (to `opts.tol` with
 /// `acc`, the bounds of the segment's patch).
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn pieces_of(
     scene: &Scene,
     s: &Segment,
+    surface: &RationalPatch,
     events: &[Event],
     draw: &DrawPatch,
     acc: Option<&PatchAccuracy>,
@@ -168,26 +184,34 @@ pub(crate) fn pieces_of(
         if next > cursor {
             let want_behind = opts.behind && outline(cursor, next) == Some(true);
             let found = qi_of(scene, s, [cursor, next], want_behind, opts, &mut tally);
+            let outside = matches!(found, Ok(None));
             let (qi, behind) = match found {
-                Ok((n, b)) => (Ok(n), b),
+                Ok(Some((n, b))) => (Ok(n), b),
+                Ok(None) => {
+                    tally.outside += 1;
+                    (Err(Reason::Unknown), None)
+                }
                 Err(e) => (Err(e), None),
             };
             let to = match ev.get(i) {
                 Some(e) if e.unresolved.is_some() => exact(next),
                 _ => around(next),
             };
-            push(Stretch {
-                param: [cursor, next],
-                from,
-                to,
-                qi,
-                behind,
-            });
+            if !outside {
+                push(Stretch {
+                    param: [cursor, next],
+                    from,
+                    to,
+                    qi,
+                    behind,
+                });
+            }
         }
         let Some(e) = ev.get(i) else { break };
         let end = e.at[1].min(s.range[1]).max(cursor);
         if let Some(why) = &e.unresolved {
-            if end > next {
+            // An unresolved stretch proven outside the faces is not drawn.
+            if end > next && !stretch_outside(scene, s, [next, end]) {
                 push(Stretch {
                     param: [next, end],
                     from: exact(next),
@@ -211,15 +235,51 @@ pub(crate) fn pieces_of(
         .into_iter()
         .map(|st| {
             let out = outline(st.param[0], st.param[1]);
-            draw_piece(s, draw, acc, opts, out, st)
+            draw_piece(s, surface, draw, acc, opts, out, st)
         })
         .collect();
     (pieces, tally)
 }
+/// Whether every point of a segment over `[p0, p1]` of its parameter is proven outside its
+/// patch's trimmed faces (never for a trimming curve).
+fn stretch_outside(scene: &Scene, s: &Segment, [p0, p1]: [f64; 2]) -> bool {
+    if s.curve.is_some() || !scene.trimmed(s.patch) {
+        return false;
+    }
+    let mut r = match (s.line, s.edge) {
+        (Some((axis, at)), _) => {
+            let mut r = Rect::from_axes([0.0, 0.0], [0.0, 0.0]);
+            let c = at.to_f64();
+            r.set_axis(axis, [c, c]);
+            r
+        }
+        (None, Some(edge)) if s.constraint.is_none() => {
+            let (a, b) = (side_point(edge, &rat(p0)), side_point(edge, &rat(p1)));
+            let f = |x: &[Rational; 2]| [x[0].to_f64(), x[1].to_f64()];
+            return scene.membership(s.patch, &Rect::point(f(&a)).hull(&Rect::point(f(&b))))
+                == Membership::Outside;
+        }
+        _ => Rect::from_axes(
+            [s.domain[0].0.to_f64(), s.domain[0].1.to_f64()],
+            [
+                s.domain.get(1).map_or(0.0, |d| d.0.to_f64()),
+                s.domain.get(1).map_or(0.0, |d| d.1.to_f64()),
+            ],
+        ),
+    };
+    let free = match s.line {
+        Some((axis, _)) => 1 - axis,
+        None => s.axis,
+    };
+    r.set_axis(free, [p0, p1]);
+    scene.membership(s.patch, &r) == Membership::Outside
+}
+
 /// A stretch drawn: traced to the tolerance if one is asked (a piece whose drawing is not
 /// certified within it is not certified), else at evenly spaced parameters.
 pub(crate) fn draw_piece(
     s: &Segment,
+    surface: &RationalPatch,
     draw: &DrawPatch,
     acc: Option<&PatchAccuracy>,
     opts: &HlrOptions,
@@ -228,6 +288,9 @@ pub(crate) fn draw_piece(
 ) -> HlrPiece {
     let [p0, p1] = st.param;
     let traced = match (opts.tol, acc) {
+        (Some(tol), _) if s.curve.is_some() && !opts.curve.past_deadline() => {
+            traced_curve(s, surface, st.from, st.to, tol)
+        }
         (Some(tol), Some(acc)) if !opts.curve.past_deadline() => {
             traced_points(s, draw, acc, st.from, st.to, tol)
         }
@@ -272,9 +335,12 @@ pub(crate) struct SampleTally {
     pub(crate) refused: usize,
     /// The sign questions that placed the samples.
     pub(crate) escalations: Escalations,
+    /// Stretches left out as outside their patch's trimmed faces.
+    pub(crate) outside: usize,
 }
 /// The QI of a segment's stretch `[p0, p1]`, from the first proven sample, and with `behind`,
-/// if it is 0, what lies right behind that sample.
+/// if it is 0, what lies right behind that sample; `Ok(None)` if the stretch lies outside its
+/// patch's trimmed faces (proven).
 pub(crate) fn qi_of(
     scene: &Scene,
     s: &Segment,
@@ -282,7 +348,7 @@ pub(crate) fn qi_of(
     behind: bool,
     opts: &HlrOptions,
     tally: &mut SampleTally,
-) -> Result<(usize, Option<Behind>), Reason> {
+) -> Result<Option<(usize, Option<Behind>)>, Reason> {
     if opts.curve.past_deadline() {
         return Err(Reason::TimeLimit);
     }
@@ -300,6 +366,30 @@ pub(crate) fn qi_of(
             continue;
         };
         tally.samples += 1;
+        // A point of a side or line along a trimming curve is a point of that curve.
+        let sample = match sample {
+            Sample::Exact { patch, uv } if scene.on_trim(patch, &uv) => Sample::Trim { patch, uv },
+            other => other,
+        };
+        // Between its cuts a line of a trimmed patch meets no loop: in or out of the faces
+        // as a whole, decided at the sample (a trimming curve bounds them: in).
+        if s.curve.is_none() {
+            let m = match &sample {
+                Sample::Exact { uv, .. } | Sample::Trim { uv, .. } => {
+                    scene.point_membership(s.patch, uv)
+                }
+                _ => scene.membership(s.patch, &sample.uv_enclosure()),
+            };
+            match m {
+                Membership::Outside => return Ok(None),
+                Membership::Undecided => {
+                    tally.refused += 1;
+                    last = Reason::PieceInFace;
+                    continue;
+                }
+                Membership::Inside => {}
+            }
+        }
         match layers(scene, &sample, &opts.ray, behind) {
             Ok(l) => {
                 let b = (behind && l.in_front == 0).then(|| Behind {
@@ -307,7 +397,7 @@ pub(crate) fn qi_of(
                     uv: sample.uv_enclosure(),
                     first: l.first_behind().map(|h| h.cloned()),
                 });
-                return Ok((l.in_front, b));
+                return Ok(Some((l.in_front, b)));
             }
             Err(e) => {
                 tally.refused += 1;
@@ -319,6 +409,12 @@ pub(crate) fn qi_of(
 }
 /// The sample point of a segment at parameter `c`.
 pub(crate) fn sample_at(s: &Segment, c: &Rational, policy: &mut Policy) -> Option<Sample> {
+    if let Some(curve) = &s.curve {
+        return Some(Sample::Trim {
+            patch: s.patch,
+            uv: point_at(curve, c)?,
+        });
+    }
     if let Some((axis, at)) = s.line {
         let mut uv = [at.to_rational(), at.to_rational()];
         uv[1 - axis] = c.clone();

@@ -17,6 +17,8 @@ pub enum LineKind {
     Silhouette,
     /// A patch boundary (a side; a shared edge is drawn once).
     Boundary,
+    /// A trimming curve of a face (a B-rep edge is drawn once).
+    Trim,
 }
 /// A piece of a line with constant visibility.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
@@ -97,6 +99,12 @@ pub struct HlrStats {
     /// root isolation that places samples and cuts on its arcs (the caller's
     /// `opts.curve.ladder`).
     pub escalations: Escalations,
+    /// Segments of trimming curves.
+    pub trim_segments: usize,
+    /// Crossings of trimming curves with patch sides and silhouettes, proven.
+    pub trim_crossings: usize,
+    /// Pieces left out as outside their patch's trimmed faces (proven).
+    pub outside_faces: usize,
 }
 /// A hidden-line drawing.
 #[derive(Clone, Debug, serde::Serialize)]

@@ -366,6 +366,8 @@ fn regions(model: &Model, view: &View, opts: &VisibleOptions) -> Result<VisibleR
             clusters: opts.clusters,
             behind: true,
             weld: Some(weld),
+            // The regions are of whole surfaces still: so are their occluders.
+            trims: false,
             ..HlrOptions::default()
         };
         let h = hidden_lines(model, view, &hopts)?;

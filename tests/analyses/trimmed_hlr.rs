@@ -1,0 +1,181 @@
+//! Hidden lines on trimmed faces (`proofs/hidden-lines.md`, "Trimmed faces"): a square plate
+//! with a round hole above a larger plate of two patches, seen obliquely from above, against
+//! the closed form of what the hole shows; the IGES fixtures with faces, certified.
+
+use crate::trim_models::{circle, q, unit, with_face};
+use limn::analysis::visibility::hlr::{hidden_lines, HiddenLines, HlrOptions, LineKind};
+use limn::model::{Format, Model, WeldTolerance};
+use limn::surface::RationalPatch;
+use limn::View;
+
+/// A flat bilinear plate `[x0, x1] × [y0, y1]` at height `z`.
+fn plate(x: [i64; 2], y: [i64; 2], z: i64) -> RationalPatch {
+    let p = |a: i64, b: i64| [q(a, 1), q(b, 1), q(z, 1)];
+    RationalPatch::polynomial(
+        [1, 1],
+        vec![p(x[0], y[0]), p(x[0], y[1]), p(x[1], y[0]), p(x[1], y[1])],
+    )
+    .unwrap()
+}
+
+/// The plate `[-1, 1]²` at z = 0 with a hole of radius 1/2 about the origin (1/4 in its
+/// parameters), above the plate `[-2, 2]²` at z = -1 made of two patches meeting at x = 0.
+fn holed_plate_above_another() -> Model {
+    let mut m = Model::from_patches(
+        Format::Json,
+        vec![
+            plate([-1, 1], [-1, 1], 0),
+            plate([-2, 0], [-2, 2], -1),
+            plate([0, 2], [-2, 2], -1),
+        ],
+    );
+    for p in &mut m.patches {
+        p.source.parameters = Some(unit());
+    }
+    let hole = circle([q(1, 2), q(1, 2)], q(1, 4), true);
+    with_face(m, 0, None, vec![hole])
+}
+
+/// Looking down (into the scene along `dir`, z component negative).
+const DIR: [i64; 3] = [1, 2, -8];
+
+/// The closed form: a point `p` of the lower plate is behind the upper face when its ray
+/// towards the viewer meets z = 0 inside the square and outside the hole (`None` within
+/// `eps` of either boundary).
+fn behind_upper(p: [f64; 3], eps: f64) -> Option<bool> {
+    let s = -p[2] / -(DIR[2] as f64);
+    let x = p[0] - s * DIR[0] as f64;
+    let y = p[1] - s * DIR[1] as f64;
+    let square = x.abs().max(y.abs());
+    let r = x.hypot(y);
+    if (square - 1.0).abs() < eps || (r - 0.5).abs() < eps {
+        return None;
+    }
+    Some(square < 1.0 && r > 0.5)
+}
+
+fn drawing(model: &Model, tol: f64) -> HiddenLines {
+    let opts = HlrOptions {
+        tol: Some(tol),
+        ..HlrOptions::default().with_weld(WeldTolerance::Exact)
+    };
+    hidden_lines(model, &View::direction(DIR), &opts).unwrap()
+}
+
+#[test]
+fn a_hole_shows_the_plate_below_and_its_rim_is_drawn() {
+    let model = holed_plate_above_another();
+    let tol = 1e-6;
+    let h = drawing(&model, tol);
+    let uncertified: Vec<_> = h.pieces.iter().filter(|p| !p.certified).collect();
+    assert!(uncertified.is_empty(), "unresolved: {uncertified:#?}");
+    // The rim: trimming-curve pieces, visible, on the circle of radius 1/2 at z = 0, and
+    // all round it.
+    let rim: Vec<_> = h
+        .pieces
+        .iter()
+        .filter(|p| p.kind == LineKind::Trim)
+        .collect();
+    assert!(!rim.is_empty());
+    let mut angles = Vec::new();
+    for p in &rim {
+        assert_eq!(p.qi, Some(0), "the rim is in front of everything");
+        let bound = p.error_bound.expect("drawn to the tolerance");
+        assert!(bound <= tol);
+        for x in &p.points {
+            let r = x[0].hypot(x[1]);
+            assert!(
+                (r - 0.5).abs() <= bound + 1e-12 && x[2].abs() <= bound + 1e-12,
+                "{x:?}"
+            );
+            angles.push(x[1].atan2(x[0]));
+        }
+    }
+    angles.sort_by(f64::total_cmp);
+    let gaps = angles.windows(2).map(|w| w[1] - w[0]).fold(0.0, f64::max);
+    assert!(
+        gaps < 0.1,
+        "the rim is drawn all round (largest gap {gaps})"
+    );
+    // Nothing of the upper plate is drawn inside the hole.
+    for p in h
+        .pieces
+        .iter()
+        .filter(|p| p.patch == 0 && p.kind != LineKind::Trim)
+    {
+        for x in &p.points {
+            assert!(x[0].hypot(x[1]) >= 0.5 - 1e-9, "{x:?} inside the hole");
+        }
+    }
+    // The lower plate's lines: hidden exactly where the upper face is in front (the closed
+    // form at every drawn point off the boundaries' images), visible through the hole.
+    let (mut through_hole, mut hidden) = (0, 0);
+    for p in h.pieces.iter().filter(|p| p.patch != 0) {
+        for x in &p.points {
+            let Some(b) = behind_upper(*x, 1e-4) else {
+                continue;
+            };
+            assert_eq!(p.qi, Some(usize::from(b)), "at {x:?}: {p:#?}");
+            hidden += usize::from(b);
+            let s = 1.0 / 8.0;
+            let hole = (x[0] - s).hypot(x[1] - 2.0 * s) < 0.5;
+            through_hole += usize::from(!b && hole);
+        }
+    }
+    assert!(
+        hidden > 0 && through_hole > 0,
+        "{hidden} hidden, {through_hole} through the hole"
+    );
+    // The report states the trims' assumption.
+    assert!(h.assumptions.iter().any(|a| a.contains("trimming curve")));
+}
+
+#[test]
+fn whole_surfaces_when_asked_draw_the_plate_over_the_hole() {
+    let model = holed_plate_above_another();
+    let opts = HlrOptions {
+        trims: false,
+        ..HlrOptions::default().with_weld(WeldTolerance::Exact)
+    };
+    let h = hidden_lines(&model, &View::direction(DIR), &opts).unwrap();
+    assert!(h.pieces.iter().all(|p| p.kind != LineKind::Trim));
+    // Untrimmed, the upper plate covers the lower plate's shared edge wherever it is in
+    // front, the hole included.
+    for p in h.pieces.iter().filter(|p| p.patch != 0 && p.certified) {
+        for x in &p.points {
+            let s = 1.0 / 8.0;
+            let (x0, y0) = (x[0] - s, x[1] - 2.0 * s);
+            if x0.abs().max(y0.abs()) < 0.99 {
+                assert_eq!(p.qi, Some(1), "at {x:?}");
+            }
+        }
+    }
+}
+
+#[test]
+fn the_fixtures_with_faces_draw_certified() {
+    // (fixture, view, least certified share).
+    let cases = [
+        ("OCC8842_cylinder_Ideas.igs", [1, 2, 3], 1.0),
+        ("OCC8842_cone_Ideas.igs", [1, 2, 3], 1.0),
+        ("CTS17806-38038.igs", [1, 2, 3], 0.95),
+    ];
+    for (name, dir, least) in cases {
+        let path = format!("{}/fixtures/iges/occt/{name}", env!("CARGO_MANIFEST_DIR"));
+        let model = limn::read_model(std::path::Path::new(&path)).unwrap();
+        let h = hidden_lines(&model, &View::direction(dir), &HlrOptions::default()).unwrap();
+        let n = h.pieces.len();
+        let ok = h.pieces.iter().filter(|p| p.certified).count();
+        assert!(
+            ok as f64 >= least * n as f64,
+            "{name}: {ok} of {n} certified"
+        );
+        // Every trimming-curve piece of a face drawn lies on its face's boundary: its
+        // parameters on the loop's patch are inside the square.
+        for p in h.pieces.iter().filter(|p| p.kind == LineKind::Trim) {
+            for &(_, u, v) in &p.points_uv {
+                assert!((-1e-9..=1.0 + 1e-9).contains(&u) && (-1e-9..=1.0 + 1e-9).contains(&v));
+            }
+        }
+    }
+}
