@@ -182,6 +182,36 @@ pub fn point_in_face(face: &Face, p: &[Rational]) -> Membership {
 /// How deep a loop piece is bisected before it is said to meet a box.
 const MISS_DEPTH: u32 = 12;
 
+/// An outward enclosure in `(u, v)` of a parameter-plane curve `(U, V, W)` over `[t0, t1]`
+/// (its value when `t0 = t1`), or `None` when `W` is not proven positive there.
+pub(crate) fn curve_box(
+    c: &[Bernstein<Rational>; 3],
+    t0: &Rational,
+    t1: &Rational,
+) -> Option<crate::geometry::Rect> {
+    let h: Vec<Interval> = c
+        .iter()
+        .map(|x| {
+            if t0 == t1 {
+                Interval::from_rational(&x.eval(std::slice::from_ref(t0)), Precision::F64)
+            } else {
+                x.restrict_rational(0, t0, t1)
+                    .convert::<Interval>(Precision::F64)
+                    .hull()
+            }
+        })
+        .collect();
+    if h[2].lo() <= 0.0 {
+        return None;
+    }
+    let u = h[0].checked_div(&h[2])?;
+    let v = h[1].checked_div(&h[2])?;
+    Some(crate::geometry::Rect::from_axes(
+        [u.lo(), u.hi()],
+        [v.lo(), v.hi()],
+    ))
+}
+
 /// Whether the rational curve with homogeneous coordinates `c = (U, V, W)` (enclosed, `W > 0`)
 /// provably misses the closed box `b = [[u0, u1], [v0, v1]]`: the curve lies in the hull of
 /// its projected control points (positive weights), so it misses the box when that hull's

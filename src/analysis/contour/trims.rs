@@ -21,7 +21,9 @@ use crate::model::Model;
 use crate::number::{margin, Interval, Number, Precision, Rational};
 use crate::reason::Reason;
 use crate::solver::plane_curve::Arc;
-use crate::solver::point_in_face::{box_in_faces, curve_misses_box, FacesOnPatch, Membership};
+use crate::solver::point_in_face::{
+    box_in_faces, curve_box, curve_misses_box, FacesOnPatch, Membership,
+};
 use crate::solver::precision::Policy;
 use crate::solver::univariate::{isolate_roots, isolate_roots_in, refine_root};
 use crate::solver::{CrossingId, CurveTopology, Dyadic, DyadicBox};
@@ -59,24 +61,6 @@ fn dyadic_box(r: &Rect) -> DyadicBox {
         lo: [lo(r.axis(0)[0]), lo(r.axis(1)[0])],
         hi: [hi(r.axis(0)[1]), hi(r.axis(1)[1])],
     }
-}
-
-/// An enclosure of a curve `(U, V, W)` on the parameter interval `[t0, t1]` (`W > 0`).
-fn curve_box(c: &[Bernstein<Rational>; 3], t0: &Rational, t1: &Rational) -> Option<Rect> {
-    let h: Vec<Interval> = c
-        .iter()
-        .map(|x| {
-            x.restrict_rational(0, t0, t1)
-                .convert::<Interval>(Precision::F64)
-                .hull()
-        })
-        .collect();
-    if h[2].lo() <= 0.0 {
-        return None;
-    }
-    let u = h[0].checked_div(&h[2])?;
-    let v = h[1].checked_div(&h[2])?;
-    Some(Rect::from_axes([u.lo(), u.hi()], [v.lo(), v.hi()]))
 }
 
 /// The crossing of an arc with the line `axis = c` inside its cell: the only root of `g` on

@@ -29,10 +29,10 @@ use crate::analysis::visibility::scene::Scene;
 use crate::bernstein::{compose_homogeneous, Poly};
 use crate::geometry::Rect;
 use crate::model::Model;
-use crate::number::{Interval, Number, Precision, Rational};
+use crate::number::{Interval, Precision, Rational};
 use crate::reason::Reason;
 use crate::solver::dyadic::Dyadic;
-use crate::solver::point_in_face::curve_misses_box;
+use crate::solver::point_in_face::{self, curve_misses_box};
 use crate::solver::precision::Policy;
 use crate::solver::system::DyadicBoxN;
 use crate::solver::univariate::{isolate_roots_in, refine_root, Root};
@@ -326,28 +326,9 @@ fn interval(r: Root) -> (Dyadic, Dyadic) {
     (r.lo(), r.hi())
 }
 
-/// An outward enclosure in `(u, v)` of the curve over `[t0, t1]` (`W > 0` there).
-pub(super) fn curve_box(c: &[Poly; 3], t: (Dyadic, Dyadic)) -> Option<Rect> {
-    let (t0, t1) = (t.0.to_rational(), t.1.to_rational());
-    let h: Vec<Interval> = c
-        .iter()
-        .map(|x| {
-            if t0 == t1 {
-                let v = x.eval(std::slice::from_ref(&t0));
-                Interval::from_rational(&v, Precision::F64)
-            } else {
-                x.restrict_rational(0, &t0, &t1)
-                    .convert::<Interval>(Precision::F64)
-                    .hull()
-            }
-        })
-        .collect();
-    if h[2].lo() <= 0.0 {
-        return None;
-    }
-    let u = h[0].checked_div(&h[2])?;
-    let v = h[1].checked_div(&h[2])?;
-    Some(Rect::from_axes([u.lo(), u.hi()], [v.lo(), v.hi()]))
+/// An outward enclosure in `(u, v)` of the curve over the dyadic interval `t` (`W > 0` there).
+fn curve_box(c: &[Poly; 3], t: (Dyadic, Dyadic)) -> Option<Rect> {
+    point_in_face::curve_box(c, &t.0.to_rational(), &t.1.to_rational())
 }
 
 /// A vertex's parameter box on patch `p` from an f64 box (exact rationals of its ends).
