@@ -114,14 +114,6 @@ pub fn working_direction(d: &[Rational; 3]) -> [Rational; 3] {
     d.clone().map(|c| c * &scale)
 }
 
-/// At most 40 characters of `text` (then "…"), for messages that quote an argument.
-fn shortened(text: &str) -> String {
-    match text.char_indices().nth(40) {
-        Some((at, _)) => format!("{}…", &text[..at]),
-        None => text.to_string(),
-    }
-}
-
 /// Parses "x,y,z" into an exact vector.
 ///
 /// # Errors
@@ -131,12 +123,15 @@ pub fn parse_vector(text: &str) -> Result<[Rational; 3], String> {
     if parts.len() != 3 {
         return Err(format!(
             "expected three numbers x,y,z, found {:?}",
-            shortened(text)
+            crate::io::shortened(text)
         ));
     }
     let mut v = Vec::with_capacity(3);
     for p in parts {
-        v.push(crate::number::parse_exact(p).map_err(|e| format!("{:?}: {e}", shortened(text)))?);
+        v.push(
+            crate::number::parse_exact(p)
+                .map_err(|e| format!("{:?}: {e}", crate::io::shortened(text)))?,
+        );
     }
     let v: [Rational; 3] = v.try_into().map_err(|_| "three numbers".to_string())?;
     Ok(v)

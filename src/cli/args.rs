@@ -186,13 +186,13 @@ pub(crate) fn parse_view(args: ViewArgs) -> Result<View, CliError> {
 /// The arguments of `limn info`.
 #[derive(clap::Args, Debug)]
 pub(crate) struct InfoArgs {
-    /// The model file (.json, .bpt, teaset, .igs/.iges, .obj).
+    /// The model file (.json, .bpt, teaset, .igs/.iges, .stp/.step, .obj).
     pub(crate) model: PathBuf,
     /// Output format.
     #[arg(long, value_enum, default_value_t = OutputFormat::Text)]
     pub(crate) format: OutputFormat,
     /// How patch boundaries are matched: "exact", or an absolute distance. Default: exact,
-    /// except for IGES (the file's minimum resolution).
+    /// except for IGES (the file's minimum resolution) and STEP (10⁻⁶ of the model's diagonal).
     #[arg(long, allow_hyphen_values = true)]
     pub(crate) weld: Option<String>,
 }

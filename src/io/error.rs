@@ -18,6 +18,13 @@ pub enum Place {
         /// Entity type number.
         kind: i64,
     },
+    /// A STEP entity instance: its number (`#123`) and entity name.
+    Instance {
+        /// The instance number.
+        id: u64,
+        /// The entity name (a complex instance's names joined by `+`).
+        kind: String,
+    },
     /// A patch (0-based index) and the field within it.
     Patch {
         /// Patch index.
@@ -36,6 +43,7 @@ impl fmt::Display for Place {
             Place::Line(l) => write!(f, "line {l}"),
             Place::LineColumn(l, c) => write!(f, "line {l}, column {c}"),
             Place::Entity { de, kind } => write!(f, "entity {kind} at directory entry {de}"),
+            Place::Instance { id, kind } => write!(f, "#{id} ({kind})"),
             Place::Patch { index, field } if field.is_empty() => write!(f, "patch {index}"),
             Place::Patch { index, field } => write!(f, "patch {index}, {field}"),
             Place::Named(s) => write!(f, "{s}"),
@@ -77,5 +85,13 @@ impl ReadError {
             place,
             message,
         }
+    }
+}
+
+/// At most 40 characters of `text` (then "…"), for messages that quote what they found.
+pub(crate) fn shortened(text: &str) -> String {
+    match text.char_indices().nth(40) {
+        Some((at, _)) => format!("{}…", &text[..at]),
+        None => text.to_string(),
     }
 }

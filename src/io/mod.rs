@@ -7,6 +7,7 @@
 //! | Newell `.bpt` | `.bpt`, or a count line then `m n` |
 //! | 1991 teaset archive | a count line then a line of 16 comma-separated indices |
 //! | IGES (entity 128 surfaces) | `.igs` / `.iges`, or 80-column records with `S` in column 73 |
+//! | STEP (faces on B-spline surfaces and planes) | `.stp` / `.step`, or text starting with `ISO-10303-21;` |
 //! | Wavefront OBJ | `.obj` |
 
 mod bpt;
@@ -14,9 +15,12 @@ mod error;
 mod iges;
 mod json;
 mod obj;
+mod step;
 mod teaset;
 mod text;
+mod trimmed;
 
+pub(crate) use error::shortened;
 pub use error::{Place, ReadError};
 pub use json::write_model;
 
@@ -73,6 +77,7 @@ pub fn read_model(path: &Path) -> Result<Model, ReadError> {
         Some("json") => Some(Format::Json),
         Some("bpt") => Some(Format::Bpt),
         Some("igs") | Some("iges") => Some(Format::Iges),
+        Some("stp") | Some("step") => Some(Format::Step),
         Some("obj") => Some(Format::Obj),
         _ => None,
     };
@@ -109,13 +114,17 @@ pub fn read_model_bytes(
             ReadError::new(
                 name,
                 Place::File,
-                "unknown model format (expected JSON, .bpt, teaset, IGES or OBJ; name the file with its extension)",
+                "unknown model format (expected JSON, .bpt, teaset, IGES, STEP or OBJ; name the file with its extension)",
             )
         })?,
     };
     if format == Format::Iges {
         // IGES is ASCII; other bytes (Latin-1 in comments) are read as they are.
         return iges::read(name, bytes);
+    }
+    if format == Format::Step {
+        // STEP is ASCII; strings may hold other bytes, read as they are.
+        return step::read(name, bytes);
     }
     let text = std::str::from_utf8(bytes).map_err(|e| {
         // The line of the first bad byte: lines before it are valid UTF-8.
@@ -132,7 +141,7 @@ pub fn read_model_bytes(
         Format::Bpt => bpt::read(name, text),
         Format::Teaset => teaset::read(name, text),
         Format::Obj => obj::read(name, text),
-        Format::Iges => unreachable!("handled above"),
+        Format::Iges | Format::Step => unreachable!("handled above"),
     }
 }
 
@@ -142,6 +151,9 @@ fn detect(bytes: &[u8]) -> Option<Format> {
     let trimmed = text.trim_start();
     if trimmed.starts_with('{') {
         return Some(Format::Json);
+    }
+    if trimmed.starts_with("ISO-10303-21") {
+        return Some(Format::Step);
     }
     let first_line = text.lines().next().unwrap_or("");
     if first_line.len() >= 73 && matches!(first_line.as_bytes()[72], b'S' | b'G') {

@@ -163,7 +163,7 @@ impl FacesSummary {
 /// file's minimum resolution, or 10⁻⁶ of the bounding-box diagonal if it states none.
 pub fn default_weld(model: &Model) -> WeldTolerance {
     match model.format {
-        super::Format::Iges => {
+        super::Format::Iges | super::Format::Step => {
             let r = model
                 .suggested_weld
                 .as_ref()

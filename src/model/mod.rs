@@ -88,6 +88,8 @@ pub enum Format {
     Teaset,
     /// IGES 5.3, entity 128 surfaces.
     Iges,
+    /// STEP (ISO 10303-21): faces on B-spline surfaces and planes.
+    Step,
     /// Wavefront OBJ meshes.
     Obj,
 }

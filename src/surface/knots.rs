@@ -73,6 +73,40 @@ pub(super) fn bezier_segments<const K: usize>(
     segments
 }
 
+/// De Boor's algorithm in f64 (for float filters: the nearest parameter of a point, never a
+/// certified answer): the point of degree `p` with `knots` and homogeneous `points` at `u`,
+/// `u` clamped to the domain.
+pub(crate) fn de_boor_f64<const K: usize>(
+    p: usize,
+    knots: &[f64],
+    points: &[[f64; K]],
+    u: f64,
+) -> [f64; K] {
+    let n = points.len();
+    let u = u.clamp(knots[p], knots[n]);
+    let mut k = p;
+    while k + 1 < n && knots[k + 1] <= u {
+        k += 1;
+    }
+    while k > p && knots[k] == knots[k + 1] {
+        k -= 1;
+    }
+    let mut d: Vec<[f64; K]> = (0..=p).map(|j| points[j + k - p]).collect();
+    for r in 1..=p {
+        for j in (r..=p).rev() {
+            let i = j + k - p;
+            let span = knots[i + p + 1 - r] - knots[i];
+            let alpha = if span > 0.0 {
+                (u - knots[i]) / span
+            } else {
+                0.0
+            };
+            d[j] = std::array::from_fn(|c| alpha * d[j][c] + (1.0 - alpha) * d[j - 1][c]);
+        }
+    }
+    d[p]
+}
+
 /// de Boor's algorithm on homogeneous points (exact); `u` in the domain `[t_p, t_n]`.
 pub(super) fn de_boor<const K: usize>(
     p: usize,

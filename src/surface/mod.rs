@@ -13,6 +13,7 @@ mod patch;
 
 pub use curve::{ModelCurve, NurbsCurve, ParameterCurve, RationalCurve};
 pub use float_eval::{eval_f64, DrawPatch, Evaluator};
+pub(crate) use knots::de_boor_f64;
 pub use mesh::Mesh;
-pub use nurbs::{NurbsError, NurbsSurface};
+pub use nurbs::{FloatNurbs, NurbsError, NurbsSurface};
 pub use patch::{Edge, PatchError, Point3, RationalPatch, MAX_PATCH_DEGREE};

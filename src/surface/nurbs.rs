@@ -278,6 +278,24 @@ impl NurbsSurface {
         patches
     }
 
+    /// The surface in f64, converted once: for float searches (the parameters nearest a
+    /// point), never for a certified value.
+    pub fn to_f64(&self) -> FloatNurbs {
+        let kf = |k: &[Rational]| k.iter().map(Rational::to_f64).collect::<Vec<f64>>();
+        let [nu, nv] = self.counts;
+        FloatNurbs {
+            degree: self.degree,
+            knots: [kf(&self.knots[0]), kf(&self.knots[1])],
+            rows: (0..nu)
+                .map(|i| {
+                    (0..nv)
+                        .map(|j| self.hom(i, j).map(|c| c.to_f64()))
+                        .collect()
+                })
+                .collect(),
+        }
+    }
+
     /// The point S(u, v) by de Boor's algorithm in exact arithmetic (for tests and checks).
     ///
     /// # Panics
@@ -302,6 +320,28 @@ impl NurbsSurface {
     }
 }
 
+/// A NURBS surface in f64 ([`NurbsSurface::to_f64`]).
+#[derive(Clone, Debug)]
+pub struct FloatNurbs {
+    degree: [usize; 2],
+    knots: [Vec<f64>; 2],
+    rows: Vec<Vec<[f64; 4]>>,
+}
+
+impl FloatNurbs {
+    /// The point S(u, v) in f64, (u, v) clamped to the domain.
+    pub fn eval(&self, u: f64, v: f64) -> [f64; 3] {
+        let [p, q] = self.degree;
+        let column: Vec<[f64; 4]> = self
+            .rows
+            .iter()
+            .map(|row| super::knots::de_boor_f64(q, &self.knots[1], row, v))
+            .collect();
+        let h = super::knots::de_boor_f64(p, &self.knots[0], &column, u);
+        [h[0] / h[3], h[1] / h[3], h[2] / h[3]]
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -310,10 +350,9 @@ mod tests {
         Rational::from((n, d))
     }
 
-    /// A bicubic-by-quadratic surface with interior knots, unclamped ends and varied weights:
-    /// every Bézier piece evaluates exactly to the NURBS surface.
-    #[test]
-    fn bezier_pieces_are_exact() {
+    /// A bicubic-by-quadratic surface with interior knots, unclamped ends in v (a double
+    /// interior knot) and varied weights; its domain is [0, 4] × [0, 1].
+    fn varied_surface() -> NurbsSurface {
         let (p, qd) = (3, 2);
         let (nu, nv) = (6, 5);
         let ku: Vec<Rational> = [0, 0, 0, 0, 1, 3, 4, 4, 4, 4]
@@ -337,7 +376,13 @@ mod tests {
                 ws.push(q(1 + ((i + 2 * j) % 3) as i64, 2));
             }
         }
-        let s = NurbsSurface::new([p, qd], ku.clone(), kv.clone(), [nu, nv], pts, ws).unwrap();
+        NurbsSurface::new([p, qd], ku, kv, [nu, nv], pts, ws).unwrap()
+    }
+
+    /// Every Bézier piece evaluates exactly to the NURBS surface.
+    #[test]
+    fn bezier_pieces_are_exact() {
+        let s = varied_surface();
         let pieces = s.to_bezier();
         let su: Vec<(Rational, Rational)> =
             vec![(q(0, 1), q(1, 1)), (q(1, 1), q(3, 1)), (q(3, 1), q(4, 1))];
@@ -362,6 +407,37 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// The f64 copy agrees with the exact evaluation to rounding, inside, on the domain's
+    /// corners and at the double knot; parameters outside are clamped to the domain.
+    #[test]
+    fn float_evaluation_matches_the_exact_one() {
+        let s = varied_surface();
+        let f = s.to_f64();
+        let close = |a: [f64; 3], b: &Point3| {
+            a.iter()
+                .zip(b)
+                .all(|(x, y)| (x - y.to_f64()).abs() <= 1e-13 * (1.0 + y.to_f64().abs()))
+        };
+        for (u, v) in [
+            (q(0, 1), q(0, 1)),
+            (q(4, 1), q(1, 1)),
+            (q(4, 1), q(0, 1)),
+            (q(1, 1), q(1, 2)),
+            (q(7, 3), q(2, 9)),
+            (q(3, 1), q(3, 4)),
+            (q(1, 10), q(99, 100)),
+        ] {
+            let exact = s.eval(&u, &v);
+            let got = f.eval(u.to_f64(), v.to_f64());
+            assert!(
+                close(got, &exact),
+                "at ({u}, {v}): {got:?} against {exact:?}"
+            );
+        }
+        assert!(close(f.eval(-1.0, 0.5), &s.eval(&q(0, 1), &q(1, 2))));
+        assert!(close(f.eval(9.0, 2.0), &s.eval(&q(4, 1), &q(1, 1))));
     }
 
     #[test]

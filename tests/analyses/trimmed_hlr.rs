@@ -179,3 +179,83 @@ fn the_fixtures_with_faces_draw_certified() {
         }
     }
 }
+
+/// The drawing's pieces by (kind, visibility): their number and their summed length.
+fn tally(h: &HiddenLines) -> std::collections::BTreeMap<(String, Option<usize>), (usize, f64)> {
+    let mut t = std::collections::BTreeMap::new();
+    for p in &h.pieces {
+        let length: f64 = p
+            .points
+            .windows(2)
+            .map(|w| {
+                (0..3)
+                    .map(|k| (w[1][k] - w[0][k]).powi(2))
+                    .sum::<f64>()
+                    .sqrt()
+            })
+            .sum();
+        let e = t.entry((format!("{:?}", p.kind), p.qi)).or_insert((0, 0.0));
+        e.0 += 1;
+        e.1 += length;
+    }
+    t
+}
+
+/// The same part read from IGES and from OCCT's STEP translation of it draws the same: every
+/// piece certified, as many pieces of each kind and visibility, of the same length (the files
+/// hold the same surfaces; their trimming curves differ by the translation's rounding).
+#[test]
+fn step_and_iges_of_one_part_draw_the_same() {
+    let root = env!("CARGO_MANIFEST_DIR");
+    for name in ["OCC8842_cylinder_Ideas", "OCC8842_cone_Ideas"] {
+        let draw = |path: String| {
+            let model = limn::read_model(std::path::Path::new(&path)).unwrap();
+            hidden_lines(&model, &View::direction([1, 2, 3]), &HlrOptions::default()).unwrap()
+        };
+        let iges = draw(format!("{root}/fixtures/iges/occt/{name}.igs"));
+        let step = draw(format!("{root}/fixtures/step/occt-written/{name}.stp"));
+        for (h, f) in [(&iges, "igs"), (&step, "stp")] {
+            assert!(
+                h.pieces.iter().all(|p| p.certified),
+                "{name}.{f}: not all certified"
+            );
+        }
+        let (a, b) = (tally(&iges), tally(&step));
+        assert_eq!(
+            a.iter().map(|(k, v)| (k, v.0)).collect::<Vec<_>>(),
+            b.iter().map(|(k, v)| (k, v.0)).collect::<Vec<_>>(),
+            "{name}: pieces by kind and visibility"
+        );
+        for ((k, (_, la)), (_, lb)) in a.iter().zip(b.values()) {
+            assert!(
+                (la - lb).abs() <= 1e-6 * la.max(1.0),
+                "{name}: {k:?} length {la} (IGES) against {lb} (STEP)"
+            );
+        }
+    }
+}
+
+/// A box of six planes (2 × 3 × 4) from STEP, seen from a general direction: three faces face
+/// the eye, so nine of its twelve edges are visible (summed length 27) and the three meeting at
+/// the far corner are hidden behind one face each (summed length 2 + 3 + 4 = 9). Planes have no
+/// silhouette: the drawing is the edges.
+#[test]
+fn a_step_box_draws_nine_visible_edges_and_three_hidden() {
+    let path = format!(
+        "{}/fixtures/step/occt-written/box.stp",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let model = limn::read_model(std::path::Path::new(&path)).unwrap();
+    let h = hidden_lines(&model, &View::direction([1, 2, 3]), &HlrOptions::default()).unwrap();
+    assert!(h.pieces.iter().all(|p| p.certified));
+    let t = tally(&h);
+    let by_qi = |qi: usize| {
+        t.iter()
+            .filter(|((_, q), _)| *q == Some(qi))
+            .fold((0, 0.0), |(n, l), (_, v)| (n + v.0, l + v.1))
+    };
+    let ((n0, l0), (n1, l1)) = (by_qi(0), by_qi(1));
+    assert_eq!((n0, n1), (9, 3), "{t:?}");
+    assert!((l0 - 27.0).abs() < 1e-9 && (l1 - 9.0).abs() < 1e-9, "{t:?}");
+    assert!(t.keys().all(|(_, q)| matches!(q, Some(0 | 1))), "{t:?}");
+}

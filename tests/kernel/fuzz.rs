@@ -63,6 +63,11 @@ fn fuzz_obj_reader() {
 }
 
 #[test]
+fn fuzz_step_reader() {
+    fuzz(Target::Step);
+}
+
+#[test]
 fn fuzz_format_detection() {
     fuzz(Target::Detect);
 }

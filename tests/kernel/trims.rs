@@ -1,15 +1,23 @@
-//! Trimmed faces and B-reps read from the IGES fixtures: the loops close, their orientation is
-//! proven, and each B-rep edge's parameter-space curve maps through the surface onto the
-//! edge's two vertices (so the loops lie where the file's model-space edges are).
+//! Trimmed faces and B-reps read from the IGES and STEP fixtures: the loops close, their
+//! orientation is proven, and each B-rep edge's parameter-space curve maps through the surface
+//! onto the edge's two vertices (so the loops lie where the file's model-space edges are). The
+//! STEP files are OCCT's translations of IGES ones: both readers must find the same topology.
 
 use limn::model::{Face, Model, Orientation};
 use limn::number::Rational;
 use limn::surface::Point3;
 use std::path::Path;
 
+/// A fixture: `.stp` files from `fixtures/step/occt-written/`, others from
+/// `fixtures/iges/occt/`.
 fn read(name: &str) -> Model {
+    let dir = if name.ends_with(".stp") {
+        "step/occt-written"
+    } else {
+        "iges/occt"
+    };
     limn::read_model(Path::new(&format!(
-        "{}/fixtures/iges/occt/{name}",
+        "{}/fixtures/{dir}/{name}",
         env!("CARGO_MANIFEST_DIR")
     )))
     .unwrap()
@@ -101,6 +109,17 @@ fn b_rep_edges_of_the_cylinder_and_the_cone_lie_on_their_vertices() {
         edges_map_onto_their_vertices("OCC8842_cone_Ideas.igs", 1e-9),
         4
     );
+    // The same parts through STEP (pcurves ranged by the vertices' nearest parameters), and a
+    // box of planes (each face's parameters the feet of its vertices, exact).
+    assert_eq!(
+        edges_map_onto_their_vertices("OCC8842_cylinder_Ideas.stp", 1e-9),
+        6
+    );
+    assert_eq!(
+        edges_map_onto_their_vertices("OCC8842_cone_Ideas.stp", 1e-9),
+        4
+    );
+    assert_eq!(edges_map_onto_their_vertices("box.stp", 0.0), 24);
 }
 
 /// A file, its faces and loops, and its B-rep's faces, edges, vertices and genus.
@@ -114,7 +133,7 @@ type Expected = (
 #[test]
 fn the_fixtures_faces_loops_and_b_reps() {
     // (file, faces, loops, B-rep (faces, edges, vertices, genus))
-    let expect: [Expected; 7] = [
+    let expect: [Expected; 11] = [
         ("CTS17806-38038.igs", 1, 1, None),
         ("bug24012_face.igs", 1, 1, None),
         ("OCC8842_cylinder_Ideas.igs", 3, 3, Some((3, 3, 2, Some(0)))),
@@ -124,6 +143,11 @@ fn the_fixtures_faces_loops_and_b_reps() {
         ("bug22869_Spring.igs", 0, 0, Some((6, 11, 7, Some(0)))),
         // A trim across the seam of a closed torus: untrimmed, reported.
         ("OCC26138_Torus.igs", 0, 0, None),
+        // STEP: OCCT's translations of the IGES parts, and a box of six planes.
+        ("OCC8842_cylinder_Ideas.stp", 3, 3, Some((3, 3, 2, Some(0)))),
+        ("OCC8842_cone_Ideas.stp", 2, 2, Some((2, 2, 2, Some(0)))),
+        ("bug24012_face.stp", 1, 1, Some((1, 4, 4, None))),
+        ("box.stp", 6, 6, Some((6, 12, 8, Some(0)))),
     ];
     for (name, faces, loops, brep) in expect {
         let m = read(name);

@@ -5,8 +5,8 @@
 //! reason is reported (inverting model-space edges onto the surface is not built yet).
 
 use super::curve::CurveFailure;
-use super::surface::SurfaceInfo;
 use super::Reader;
+use crate::io::trimmed::SurfaceInfo;
 use crate::io::ReadError;
 use crate::model::{BrepEdge, Closing, Face, TrimLoop};
 use crate::surface::{ParameterCurve, Point3};

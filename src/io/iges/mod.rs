@@ -15,11 +15,10 @@ mod surface;
 mod trim;
 
 use super::{Place, ReadError};
-use crate::model::{in_domain, Face, Format, InDomain, Model, ModelPatch, PatchSource, Warning};
+use crate::io::trimmed::{self, DomainFailure, SurfaceInfo};
+use crate::model::{Face, Format, Model, ModelPatch, PatchSource, Warning};
 use crate::number::{parse_exact, Rational};
-use crate::surface::RationalPatch;
 use std::collections::BTreeMap;
-use surface::SurfaceInfo;
 
 /// One directory entry (two D records).
 #[derive(Clone, Debug)]
@@ -31,17 +30,8 @@ struct DirEntry {
     form: i64,
 }
 
-/// The largest gap between consecutive trimming curves that is bridged, relative to the
-/// larger side of the surface's parameter domain; also how far a trimming curve may leave the
-/// domain. Files write each curve's end points separately in decimal, so consecutive curves
-/// meet only to their written precision.
-pub(super) const PARAMETER_GAP: (i64, i64) = (1, 1_000_000);
-
 /// An exact affine map x -> R x + T: (R, T).
 type Affine = ([[Rational; 3]; 3], [Rational; 3]);
-
-/// A Bézier piece of a surface with its knot span (u, v).
-type BezierPiece = ((usize, usize), RationalPatch);
 
 struct Reader<'a> {
     name: &'a str,
@@ -615,40 +605,19 @@ impl Reader<'_> {
     }
 
     /// The face, when every curve of its loops lies in the surface's parameter domain or
-    /// outside it by no more than the loop tolerance. Further outside is an error naming the
-    /// loop, except on a surface the file states closed, whose trims may cross its seam (which
-    /// limn does not read yet): that face is used untrimmed, with the reason.
+    /// outside it by no more than the loop tolerance ([`trimmed::check_in_domain`]).
     fn check_in_domain(
         &self,
         face: Face,
         info: &SurfaceInfo,
     ) -> Result<Result<Face, String>, ReadError> {
-        let tolerance = info.closing().tolerance.to_f64();
-        for l in face.loops() {
-            for (k, p) in l.pieces.iter().enumerate() {
-                if let InDomain::Outside(by) = in_domain(&p.curve, &face.domain) {
-                    if by > tolerance && info.closed.contains(&true) {
-                        return Ok(Err(format!("a trimming curve leaves the parameter domain of its closed surface by at least {by:.3e}; trims across a closed surface's seam are not read yet")));
-                    }
-                    if by > tolerance {
-                        let de = l.entity.or(face.entity).unwrap_or(0);
-                        let d = &face.domain;
-                        return Err(self.entity_err(
-                            de,
-                            format!(
-                                "trimming curve {} leaves the surface's parameter domain [{}, {}] x [{}, {}] by at least {by:.3e}",
-                                k + 1,
-                                d[0][0].to_f64(),
-                                d[0][1].to_f64(),
-                                d[1][0].to_f64(),
-                                d[1][1].to_f64()
-                            ),
-                        ));
-                    }
-                }
-            }
+        match trimmed::check_in_domain(&face, info) {
+            Ok(()) => Ok(Ok(face)),
+            Err(DomainFailure::AcrossSeam(why)) => Ok(Err(why)),
+            Err(DomainFailure::Outside {
+                entity, message, ..
+            }) => Err(self.entity_err(entity.or(face.entity).unwrap_or(0), message)),
         }
-        Ok(Ok(face))
     }
 }
 

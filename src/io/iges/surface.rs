@@ -1,13 +1,11 @@
 //! IGES entity 128, the rational B-spline surface, split into exact Bézier patches.
 
-use super::{apply, BezierPiece, Reader};
+use super::{apply, Reader};
+use crate::io::trimmed::{BezierPiece, SurfaceInfo};
 use crate::io::ReadError;
-use crate::model::Closing;
 use crate::number::Rational;
 use crate::surface::{NurbsError, NurbsSurface, Point3};
 use std::cmp::Ordering;
-
-type Rational2 = [Rational; 2];
 
 impl Reader<'_> {
     /// The surface of a 128 entity, its transformation applied, with the warnings its data
@@ -98,78 +96,7 @@ impl Reader<'_> {
         // PROP1 and PROP2: the file states the surface closed in u, in v.
         let f = self.fields(de)?;
         let closed = [4, 5].map(|i| f.get(i).is_some_and(|x| x.trim() == "1"));
-        let info = SurfaceInfo {
-            index,
-            spans: surface.spans(),
-            domain: surface.domain(),
-            collapsed: collapsed_sides(&pieces),
-            closed,
-        };
+        let info = SurfaceInfo::of_nurbs(index, &surface, &pieces, closed);
         Ok((info, pieces))
-    }
-}
-
-/// Which sides of the domain (u = u0, u = u1, v = v0, v = v1) the surface maps to one point:
-/// every Bézier piece along the side has all control points of that side equal (the side of
-/// a piece is the Bézier curve of those points, so it is then a point; consecutive pieces
-/// share their corners, so the whole side is one point).
-fn collapsed_sides(pieces: &[BezierPiece]) -> [bool; 4] {
-    let last = |k: usize| {
-        pieces
-            .iter()
-            .map(|((su, sv), _)| [*su, *sv][k])
-            .max()
-            .unwrap_or(0)
-    };
-    let (lu, lv) = (last(0), last(1));
-    let mut collapsed = [true; 4];
-    for ((su, sv), patch) in pieces {
-        let [m, n] = patch.degree();
-        let pts = patch.points();
-        let at = |i: usize, j: usize| &pts[i * (n + 1) + j];
-        let point = |side: usize| -> bool {
-            match side {
-                0 => (0..=n).all(|j| at(0, j) == at(0, 0)),
-                1 => (0..=n).all(|j| at(m, j) == at(m, 0)),
-                2 => (0..=m).all(|i| at(i, 0) == at(0, 0)),
-                _ => (0..=m).all(|i| at(i, n) == at(0, n)),
-            }
-        };
-        let touches = [*su == 0, *su == lu, *sv == 0, *sv == lv];
-        for side in 0..4 {
-            if touches[side] && !point(side) {
-                collapsed[side] = false;
-            }
-        }
-    }
-    collapsed
-}
-
-/// What the trimming loops on a surface need to know of it.
-#[derive(Clone, Debug)]
-pub(super) struct SurfaceInfo {
-    /// Its number among the model's surfaces.
-    pub(super) index: usize,
-    /// Its knot spans along u and v.
-    pub(super) spans: [Vec<Rational2>; 2],
-    /// Its parameter domain.
-    pub(super) domain: [[Rational; 2]; 2],
-    /// The sides it collapses to a point (u0, u1, v0, v1).
-    pub(super) collapsed: [bool; 4],
-    /// Closed in u, in v, as the file states (PROP1, PROP2).
-    pub(super) closed: [bool; 2],
-}
-
-impl SurfaceInfo {
-    /// How loops on it are closed.
-    pub(super) fn closing(&self) -> Closing<'_> {
-        let side = |d: &[Rational; 2]| Rational::from(&d[1] - &d[0]);
-        let tolerance =
-            side(&self.domain[0]).max(side(&self.domain[1])) * Rational::from(super::PARAMETER_GAP);
-        Closing {
-            tolerance,
-            domain: &self.domain,
-            collapsed: self.collapsed,
-        }
     }
 }

@@ -4,8 +4,8 @@
 //! used untrimmed and the reason reported.
 
 use super::curve::CurveFailure;
-use super::surface::SurfaceInfo;
 use super::Reader;
+use crate::io::trimmed::SurfaceInfo;
 use crate::io::ReadError;
 use crate::model::{Closing, Face, TrimLoop};
 use crate::surface::ParameterCurve;

@@ -47,6 +47,8 @@ pub enum Target {
     Iges,
     /// The Wavefront OBJ reader.
     Obj,
+    /// The STEP (ISO 10303-21) reader.
+    Step,
     /// Format detection (`read_model_bytes` with no format), on inputs of every kind.
     Detect,
     /// The command line of the `limn` binary.
@@ -55,12 +57,13 @@ pub enum Target {
 
 impl Target {
     /// Every target, readers first.
-    pub const ALL: [Target; 7] = [
+    pub const ALL: [Target; 8] = [
         Target::Json,
         Target::Bpt,
         Target::Teaset,
         Target::Iges,
         Target::Obj,
+        Target::Step,
         Target::Detect,
         Target::Args,
     ];
@@ -73,6 +76,7 @@ impl Target {
             Target::Teaset => "teaset",
             Target::Iges => "iges",
             Target::Obj => "obj",
+            Target::Step => "step",
             Target::Detect => "detect",
             Target::Args => "args",
         }
@@ -92,7 +96,9 @@ impl std::str::FromStr for Target {
             .into_iter()
             .find(|t| t.name() == s)
             .ok_or_else(|| {
-                format!("unknown fuzz target {s:?} (json, bpt, teaset, iges, obj, detect, args)")
+                format!(
+                    "unknown fuzz target {s:?} (json, bpt, teaset, iges, obj, step, detect, args)"
+                )
             })
     }
 }

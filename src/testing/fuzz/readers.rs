@@ -38,6 +38,7 @@ fn kind_of(path: &Path) -> Option<Format> {
         Some("teaset") => Some(Format::Teaset),
         Some("igs" | "iges") => Some(Format::Iges),
         Some("obj") => Some(Format::Obj),
+        Some("stp" | "step") => Some(Format::Step),
         None if path.parent().is_some_and(|p| p.ends_with("newell_teaset"))
             && path.file_name().is_some_and(|n| n != "README") =>
         {
@@ -55,6 +56,7 @@ fn format_of(target: Target) -> Option<Format> {
         Target::Teaset => Some(Format::Teaset),
         Target::Iges => Some(Format::Iges),
         Target::Obj => Some(Format::Obj),
+        Target::Step => Some(Format::Step),
         Target::Detect | Target::Args => None,
     }
 }
@@ -147,7 +149,7 @@ fn generated(format: Format) -> Vec<Input> {
             "# a tetrahedron\nv 0 0 0\nv 1 0 0 1\nv 0 1 0 2\nv 0 0 1/3\nvn 0 0 1\nf 1/1/1 2//1 3\nf 1 -1 2\nf 2 3 4\nf 1 3 -1\n"
                 .into(),
         )],
-        Format::Iges => Vec::new(),
+        Format::Iges | Format::Step => Vec::new(),
     }
 }
 
@@ -439,6 +441,7 @@ fn outcome(verdict: &Verdict) -> String {
                 Place::Line(_) => "line",
                 Place::LineColumn(..) => "line-column",
                 Place::Entity { .. } => "entity",
+                Place::Instance { .. } => "instance",
                 Place::Patch { .. } => "patch",
                 Place::Named(_) => "named",
             };

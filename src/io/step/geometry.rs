@@ -1,0 +1,488 @@
+//! STEP geometry (ISO 10303-42) as exact data: points, directions and placements; the curves
+//! of edges and trims (B-spline curves with knots, rational or not, and lines); the surfaces
+//! of faces (B-spline surfaces with knots, rational or not, and planes). Other entity types
+//! are reported as not read, never approximated.
+
+use super::part21::Param;
+use super::Reader;
+use crate::io::ReadError;
+use crate::number::Rational;
+use crate::surface::{NurbsError, NurbsSurface, Point3};
+
+/// A curve of an edge or a trim, in any dimension.
+#[derive(Clone, Debug)]
+pub(super) enum Curve {
+    /// A rational B-spline curve: degree, full knot vector, affine control points, weights.
+    Nurbs {
+        degree: usize,
+        knots: Vec<Rational>,
+        points: Vec<Vec<Rational>>,
+        weights: Vec<Rational>,
+    },
+    /// The line `p + t d` (`d` the direction times the vector's magnitude).
+    Line { p: Vec<Rational>, d: Vec<Rational> },
+}
+
+impl Curve {
+    /// The knot domain `[t_p, t_n]` of a B-spline curve.
+    pub(super) fn domain(&self) -> Option<[Rational; 2]> {
+        match self {
+            Curve::Nurbs {
+                degree,
+                knots,
+                points,
+                ..
+            } => Some([knots[*degree].clone(), knots[points.len()].clone()]),
+            Curve::Line { .. } => None,
+        }
+    }
+}
+
+/// A surface a face lies on.
+#[derive(Clone, Debug)]
+pub(super) enum StepSurface {
+    /// A B-spline surface and whether the file states it closed in u and in v.
+    Nurbs(Box<NurbsSurface>, [bool; 2]),
+    /// A plane.
+    Plane(Box<PlaneFrame>),
+}
+
+/// The plane `o + u x + v y`: `x` and `y` the placement's unit axes.
+#[derive(Clone, Debug)]
+pub(super) struct PlaneFrame {
+    pub(super) o: Point3,
+    pub(super) x: Point3,
+    pub(super) y: Point3,
+}
+
+/// `a · b`, exact.
+pub(super) fn dot(a: &[Rational], b: &[Rational]) -> Rational {
+    a.iter().zip(b).map(|(x, y)| Rational::from(x * y)).sum()
+}
+
+/// `a × b`, exact.
+fn cross(a: &[Rational; 3], b: &[Rational; 3]) -> [Rational; 3] {
+    let c = |i: usize, j: usize| Rational::from(&a[i] * &b[j]) - Rational::from(&a[j] * &b[i]);
+    [c(1, 2), c(2, 0), c(0, 1)]
+}
+
+/// A vector of length within 2^-50 of 1 in the direction of `v` (nonzero): `v` itself when
+/// its squared length is exactly 1, else `v` divided by a dyadic close to its length.
+fn unit(v: [Rational; 3]) -> ([Rational; 3], bool) {
+    let n2 = dot(&v, &v);
+    if n2 == 1 {
+        return (v, true);
+    }
+    let len = Rational::from_f64(n2.to_f64().sqrt()).unwrap_or_else(|| Rational::from(1));
+    (v.map(|c| c / &len), false)
+}
+
+impl Reader<'_> {
+    /// The coordinates of a `CARTESIAN_POINT` (`dim` of them).
+    pub(super) fn point(&self, from: u64, id: u64, dim: usize) -> Result<Vec<Rational>, ReadError> {
+        let a = self.simple(from, id, "point", &["CARTESIAN_POINT"])?;
+        let c = self.list(id, self.attr(id, a, 1, "coordinates")?, "coordinates")?;
+        if c.len() != dim {
+            return Err(self.err(
+                id,
+                format!(
+                    "the point has {} coordinates where {dim} are needed",
+                    c.len()
+                ),
+            ));
+        }
+        c.iter().map(|x| self.real(id, x, "coordinate")).collect()
+    }
+
+    /// The ratios of a `DIRECTION` (`dim` of them, not all zero).
+    pub(super) fn direction(
+        &self,
+        from: u64,
+        id: u64,
+        dim: usize,
+    ) -> Result<Vec<Rational>, ReadError> {
+        let a = self.simple(from, id, "direction", &["DIRECTION"])?;
+        let c = self.list(
+            id,
+            self.attr(id, a, 1, "direction ratios")?,
+            "direction ratios",
+        )?;
+        if c.len() != dim {
+            return Err(self.err(
+                id,
+                format!(
+                    "the direction has {} ratios where {dim} are needed",
+                    c.len()
+                ),
+            ));
+        }
+        let d: Vec<Rational> = c
+            .iter()
+            .map(|x| self.real(id, x, "direction ratio"))
+            .collect::<Result<_, _>>()?;
+        if d.iter().all(|x| *x == 0) {
+            return Err(self.err(id, "the direction is the zero vector"));
+        }
+        Ok(d)
+    }
+
+    fn direction3(
+        &self,
+        from: u64,
+        p: &Param,
+        what: &str,
+        default: [i64; 3],
+    ) -> Result<[Rational; 3], ReadError> {
+        match p {
+            Param::Unset => Ok(default.map(Rational::from)),
+            _ => {
+                let d = self.direction(from, self.reference(from, p, what)?, 3)?;
+                Ok([d[0].clone(), d[1].clone(), d[2].clone()])
+            }
+        }
+    }
+
+    /// An `AXIS2_PLACEMENT_3D`: its origin and the axes x, y of its xy-plane (x the reference
+    /// direction made orthogonal to the axis, y = axis × x), each of length 1 up to 2^-50
+    /// (exactly when the file's directions have exact unit length; the second value says so).
+    pub(super) fn placement(
+        &self,
+        from: u64,
+        id: u64,
+    ) -> Result<(Point3, Point3, Point3, bool), ReadError> {
+        let a = self.simple(from, id, "placement", &["AXIS2_PLACEMENT_3D"])?;
+        let o = self.point(
+            id,
+            self.reference(id, self.attr(id, a, 1, "location")?, "location")?,
+            3,
+        )?;
+        let z = self.direction3(id, self.attr(id, a, 2, "axis")?, "axis", [0, 0, 1])?;
+        let r = self.attr(id, a, 3, "ref_direction")?;
+        let r = match r {
+            Param::Unset => {
+                if z[1] == 0 && z[2] == 0 {
+                    [0, 1, 0].map(Rational::from)
+                } else {
+                    [1, 0, 0].map(Rational::from)
+                }
+            }
+            _ => self.direction3(id, r, "ref_direction", [1, 0, 0])?,
+        };
+        let (z, z_exact) = unit(z);
+        let k = dot(&r, &z);
+        let x = [0, 1, 2].map(|i| &r[i] - Rational::from(&k * &z[i]));
+        if x.iter().all(|c| *c == 0) {
+            return Err(self.err(id, "the reference direction is parallel to the axis"));
+        }
+        let (x, x_exact) = unit(x);
+        let y = cross(&z, &x);
+        Ok((
+            [o[0].clone(), o[1].clone(), o[2].clone()],
+            x,
+            y,
+            z_exact && x_exact,
+        ))
+    }
+
+    /// A curve of dimension `dim`, or why it is not read.
+    pub(super) fn curve(
+        &self,
+        from: u64,
+        id: u64,
+        dim: usize,
+    ) -> Result<Result<Curve, String>, ReadError> {
+        let inst = self.instance(from, id, "curve")?;
+        if let Some(b) = inst.record("B_SPLINE_CURVE_WITH_KNOTS") {
+            // Simple: (name, degree, points, form, closed, self_intersect, mults, knots, spec);
+            // complex: B_SPLINE_CURVE(degree, points, form, closed, self_intersect) with
+            // B_SPLINE_CURVE_WITH_KNOTS(mults, knots, spec) and RATIONAL_B_SPLINE_CURVE(weights).
+            let (head, knots) = if inst.complex {
+                let Some(h) = inst.record("B_SPLINE_CURVE") else {
+                    return Err(self.err(
+                        id,
+                        "a complex B-spline curve without its B_SPLINE_CURVE part",
+                    ));
+                };
+                (&h.params[..], &b.params[..])
+            } else {
+                let p = &b.params[..];
+                if p.len() < 9 {
+                    return Err(self.err(id, format!("{} attributes where 9 are needed", p.len())));
+                }
+                (&p[1..6], &p[6..9])
+            };
+            let degree = self.count(id, self.attr(id, head, 0, "degree")?, "degree", 1_000)?;
+            let cps = self.list(
+                id,
+                self.attr(id, head, 1, "control_points_list")?,
+                "control points",
+            )?;
+            let points: Vec<Vec<Rational>> = cps
+                .iter()
+                .map(|p| self.point(id, self.reference(id, p, "control point")?, dim))
+                .collect::<Result<_, _>>()?;
+            let knots = self.knots(id, knots, (0, 1), points.len() + degree + 1)?;
+            let weights = match inst.record("RATIONAL_B_SPLINE_CURVE") {
+                None => vec![Rational::from(1); points.len()],
+                Some(r) => {
+                    let w =
+                        self.list(id, self.attr(id, &r.params, 0, "weights_data")?, "weights")?;
+                    w.iter()
+                        .map(|x| self.real(id, x, "weight"))
+                        .collect::<Result<_, _>>()?
+                }
+            };
+            if weights.len() != points.len() {
+                return Err(self.err(
+                    id,
+                    format!(
+                        "{} weights for {} control points",
+                        weights.len(),
+                        points.len()
+                    ),
+                ));
+            }
+            if let Some((k, w)) = weights.iter().enumerate().find(|(_, w)| **w <= 0) {
+                return Err(self.err(
+                    id,
+                    format!(
+                        "weight {}: {w} is not positive (weights must be positive)",
+                        k + 1
+                    ),
+                ));
+            }
+            if degree == 0 || points.len() <= degree {
+                return Err(self.err(
+                    id,
+                    format!("degree {degree} with {} control points", points.len()),
+                ));
+            }
+            return Ok(Ok(Curve::Nurbs {
+                degree,
+                knots,
+                points,
+                weights,
+            }));
+        }
+        match (inst.complex, inst.records[0].name.as_str()) {
+            (false, "LINE") => {
+                let a = &inst.records[0].params;
+                let p = self.point(
+                    id,
+                    self.reference(id, self.attr(id, a, 1, "pnt")?, "pnt")?,
+                    dim,
+                )?;
+                let v = self.reference(id, self.attr(id, a, 2, "dir")?, "dir")?;
+                let va = self.simple(id, v, "vector", &["VECTOR"])?;
+                let d = self.direction(
+                    v,
+                    self.reference(v, self.attr(v, va, 1, "orientation")?, "orientation")?,
+                    dim,
+                )?;
+                let m = self.real(v, self.attr(v, va, 2, "magnitude")?, "magnitude")?;
+                if m <= 0 {
+                    return Err(self.err(v, format!("the vector's magnitude {m} is not positive")));
+                }
+                // The file's direction is meant to be of unit length: normalised as in
+                // [`unit`] when it is not exactly.
+                let d = if dim == 3 {
+                    unit([d[0].clone(), d[1].clone(), d[2].clone()]).0.to_vec()
+                } else {
+                    let (u, _) = unit([d[0].clone(), d[1].clone(), Rational::from(0)]);
+                    u[..2].to_vec()
+                };
+                Ok(Ok(Curve::Line {
+                    p,
+                    d: d.into_iter().map(|c| c * &m).collect(),
+                }))
+            }
+            _ => Ok(Err(format!(
+                "its curve #{id} is a {}, which limn does not read yet",
+                inst.kind()
+            ))),
+        }
+    }
+
+    /// A knot vector from the multiplicities at `a[m]` and the knots at `a[k]`, expanded, of
+    /// length `n`.
+    fn knots(
+        &self,
+        id: u64,
+        a: &[Param],
+        (m, k): (usize, usize),
+        n: usize,
+    ) -> Result<Vec<Rational>, ReadError> {
+        let mults = self.list(
+            id,
+            self.attr(id, a, m, "knot_multiplicities")?,
+            "knot multiplicities",
+        )?;
+        let values = self.list(id, self.attr(id, a, k, "knots")?, "knots")?;
+        if mults.len() != values.len() {
+            return Err(self.err(
+                id,
+                format!(
+                    "{} knot multiplicities for {} knots",
+                    mults.len(),
+                    values.len()
+                ),
+            ));
+        }
+        let mut out = Vec::with_capacity(n);
+        for (m, k) in mults.iter().zip(values) {
+            let m = self.count(id, m, "knot multiplicity", n)?;
+            let k = self.real(id, k, "knot")?;
+            if out.len() + m > n {
+                break;
+            }
+            out.extend(std::iter::repeat_n(k, m));
+        }
+        if out.len() != n {
+            let total: usize = mults
+                .iter()
+                .filter_map(|m| match m {
+                    Param::Integer(i) => usize::try_from(*i).ok(),
+                    _ => None,
+                })
+                .sum();
+            return Err(self.err(id, format!("the knot multiplicities add up to {total}, but {n} knots are needed (control points + degree + 1)")));
+        }
+        if let Some(k) = (1..out.len()).find(|&k| out[k] < out[k - 1]) {
+            return Err(self.err(
+                id,
+                format!("knot {}: {} is less than the knot before it", k + 1, out[k]),
+            ));
+        }
+        Ok(out)
+    }
+
+    /// The surface of a face, or why it is not read.
+    pub(super) fn surface(
+        &self,
+        from: u64,
+        id: u64,
+    ) -> Result<Result<StepSurface, String>, ReadError> {
+        let inst = self.instance(from, id, "surface")?;
+        if let Some(b) = inst.record("B_SPLINE_SURFACE_WITH_KNOTS") {
+            let (head, knots) = if inst.complex {
+                let Some(h) = inst.record("B_SPLINE_SURFACE") else {
+                    return Err(self.err(
+                        id,
+                        "a complex B-spline surface without its B_SPLINE_SURFACE part",
+                    ));
+                };
+                (&h.params[..], &b.params[..])
+            } else {
+                let p = &b.params[..];
+                if p.len() < 13 {
+                    return Err(self.err(id, format!("{} attributes where 13 are needed", p.len())));
+                }
+                (&p[1..8], &p[8..13])
+            };
+            let deg = [
+                self.count(id, self.attr(id, head, 0, "u_degree")?, "u_degree", 1_000)?,
+                self.count(id, self.attr(id, head, 1, "v_degree")?, "v_degree", 1_000)?,
+            ];
+            let rows = self.list(
+                id,
+                self.attr(id, head, 2, "control_points_list")?,
+                "control points",
+            )?;
+            let nu = rows.len();
+            let mut nv = 0;
+            let mut points: Vec<Point3> = Vec::new();
+            for (i, row) in rows.iter().enumerate() {
+                let row = self.list(id, row, "a row of control points")?;
+                if i == 0 {
+                    nv = row.len();
+                } else if row.len() != nv {
+                    return Err(self.err(
+                        id,
+                        format!(
+                            "row {} of the control points has {} points, row 1 has {nv}",
+                            i + 1,
+                            row.len()
+                        ),
+                    ));
+                }
+                if nu.saturating_mul(nv) > 10_000_000 {
+                    return Err(self.err(id, "too many control points"));
+                }
+                for p in row {
+                    let c = self.point(id, self.reference(id, p, "control point")?, 3)?;
+                    points.push([c[0].clone(), c[1].clone(), c[2].clone()]);
+                }
+            }
+            let closed = [3, 4].map(|k| matches!(head.get(k), Some(Param::Enum(e)) if e == "T"));
+            let ku = self.knots(id, knots, (0, 2), nu + deg[0] + 1)?;
+            let kv = self.knots(id, knots, (1, 3), nv + deg[1] + 1)?;
+            let weights: Vec<Rational> = match inst.record("RATIONAL_B_SPLINE_SURFACE") {
+                None => vec![Rational::from(1); nu * nv],
+                Some(r) => {
+                    let w =
+                        self.list(id, self.attr(id, &r.params, 0, "weights_data")?, "weights")?;
+                    let mut out = Vec::with_capacity(nu * nv);
+                    for row in w {
+                        for x in self.list(id, row, "a row of weights")? {
+                            out.push(self.real(id, x, "weight")?);
+                        }
+                    }
+                    out
+                }
+            };
+            if weights.len() != nu * nv {
+                return Err(self.err(
+                    id,
+                    format!("{} weights for {} control points", weights.len(), nu * nv),
+                ));
+            }
+            if let Some((k, w)) = weights.iter().enumerate().find(|(_, w)| **w <= 0) {
+                return Err(self.err(
+                    id,
+                    format!(
+                        "weight {}: {w} is not positive (weights must be positive)",
+                        k + 1
+                    ),
+                ));
+            }
+            let s = NurbsSurface::new(deg, ku, kv, [nu, nv], points, weights).map_err(|e| {
+                self.err(
+                    id,
+                    match e {
+                        NurbsError::Decreasing { dir, index, value } => {
+                            format!(
+                                "{dir} knot {}: {value} is less than the knot before it",
+                                index + 1
+                            )
+                        }
+                        e => e.to_string(),
+                    },
+                )
+            })?;
+            return Ok(Ok(StepSurface::Nurbs(Box::new(s), closed)));
+        }
+        match (inst.complex, inst.records[0].name.as_str()) {
+            (false, "PLANE") => {
+                let a = &inst.records[0].params;
+                let pl = self.reference(id, self.attr(id, a, 1, "position")?, "position")?;
+                let (o, x, y, _) = self.placement(id, pl)?;
+                Ok(Ok(StepSurface::Plane(Box::new(PlaneFrame { o, x, y }))))
+            }
+            _ if inst
+                .records
+                .iter()
+                .any(|r| r.name.ends_with("_SURFACE") || r.name == "PLANE") =>
+            {
+                Ok(Err(format!(
+                    "its surface #{id} is a {}, which limn does not read yet",
+                    inst.kind()
+                )))
+            }
+            // Not a surface at all: the file is broken.
+            _ => Err(self.err(
+                from,
+                format!("its surface #{id} is a {}, not a surface", inst.kind()),
+            )),
+        }
+    }
+}
