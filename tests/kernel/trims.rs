@@ -178,3 +178,157 @@ fn the_fixtures_faces_loops_and_b_reps() {
         assert_eq!(untrimmed, faces == 0, "{name}: {:?}", m.warnings);
     }
 }
+
+/// A face on a surface limn does not read yet is left out with a warning naming it; a face
+/// whose "surface" is no surface at all makes the file refused, naming the face.
+#[test]
+fn step_faces_on_unread_surfaces_are_left_out_and_non_surfaces_refused() {
+    let path = format!(
+        "{}/fixtures/step/occt-written/box.stp",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let text = std::fs::read_to_string(path).unwrap();
+    let plane = "#32 = PLANE('',#33);";
+    assert!(text.contains(plane));
+    let swept = text.replace(plane, "#32 = SURFACE_OF_LINEAR_EXTRUSION('',#27,#29);");
+    let m = limn::io::read_model_bytes("swept.stp", swept.as_bytes(), None).unwrap();
+    assert_eq!(m.faces.len(), 5);
+    assert!(
+        m.warnings.iter().any(|w| w.place == "#17"
+            && w.message.contains("left out")
+            && w.message.contains("SURFACE_OF_LINEAR_EXTRUSION")),
+        "{:?}",
+        m.warnings
+    );
+    let direction = text.replace(plane, "#32 = DIRECTION('',(0.,0.,1.));");
+    let e = limn::io::read_model_bytes("direction.stp", direction.as_bytes(), None).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "direction.stp: #17 (ADVANCED_FACE): its surface #32 is a DIRECTION, not a surface"
+    );
+}
+
+/// `box.stp` with every edge's `SURFACE_CURVE` replaced by its model-space curve, each wrapped
+/// as `wrap` gives it (`#id` of the curve, the new instance's number): no pcurves left.
+fn box_without_pcurves(wrap: impl Fn(u64, u64) -> String) -> String {
+    let path = format!(
+        "{}/fixtures/step/occt-written/box.stp",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let text = std::fs::read_to_string(path).unwrap();
+    let id = |s: &str| s.trim_start_matches('#').parse::<u64>().unwrap();
+    // SURFACE_CURVE number -> its curve_3d.
+    let mut curve_3d = std::collections::BTreeMap::new();
+    for line in text.lines() {
+        if let Some((lhs, rhs)) = line.split_once(" = SURFACE_CURVE('',") {
+            curve_3d.insert(id(lhs), id(rhs.split(',').next().unwrap()));
+        }
+    }
+    let mut next = 10_000;
+    let mut extra = String::new();
+    let mut out = String::new();
+    for line in text.lines() {
+        if let Some((lhs, rhs)) = line.split_once(" = EDGE_CURVE('',") {
+            let f: Vec<&str> = rhs.split(',').collect();
+            let c = curve_3d[&id(f[2])];
+            extra.push_str(&format!("#{next} = {};\n", wrap(c, next)));
+            out.push_str(&format!(
+                "{lhs} = EDGE_CURVE('',{},{},#{next},{}\n",
+                f[0], f[1], f[3]
+            ));
+            next += 1;
+        } else if line == "ENDSEC;" && !extra.is_empty() && out.contains("DATA;") {
+            out.push_str(&extra);
+            extra.clear();
+            out.push_str("ENDSEC;\n");
+        } else {
+            out.push_str(line);
+            out.push('\n');
+        }
+    }
+    out
+}
+
+/// Plane faces whose edges have no pcurve: each model-space curve is mapped into its plane's
+/// frame exactly (here the box's lines, lying in their planes exactly), so the box reads as it
+/// does with its pcurves, loops and B-rep alike, and the warning states the bound 0; a line run
+/// through a `TRIMMED_CURVE` against its basis reads the same; a curve off its face's plane
+/// leaves that face out, naming the bound.
+#[test]
+fn step_plane_faces_without_pcurves_map_their_edges_into_the_plane() {
+    let with = read("box.stp");
+    let summary = |m: &Model| {
+        let loops: Vec<Vec<String>> = m
+            .faces
+            .iter()
+            .map(|f| {
+                let mut ends: Vec<String> = f
+                    .loops()
+                    .flat_map(|l| l.pieces.iter())
+                    .map(|p| format!("{:?}", p.curve.start()))
+                    .collect();
+                ends.sort();
+                ends
+            })
+            .collect();
+        (loops, m.brep.as_ref().map(|b| b.summary().genus))
+    };
+    // The LINE itself as the edge geometry.
+    let bare = box_without_pcurves(|c, _| format!("SURFACE_CURVE('',#{c},(),.PCURVE_S1.)"));
+    let m = limn::io::read_model_bytes("bare.stp", bare.as_bytes(), None).unwrap();
+    assert_eq!(summary(&m), summary(&with));
+    assert!(
+        m.warnings
+            .iter()
+            .any(|w| w.message.starts_with("24 edge(s) without a pcurve")
+                && w.message.ends_with("within 0.000e0 of its plane")),
+        "{:?}",
+        m.warnings
+    );
+    // Trimmed curves whose sense disagrees with their basis lines: the edges' same_sense
+    // flipped with them (each edge then runs against its trimmed curve, along its line).
+    let flipped = box_without_pcurves(|c, _| {
+        format!(
+            "TRIMMED_CURVE('',#{c},(PARAMETER_VALUE(0.)),(PARAMETER_VALUE(1.)),.F.,.PARAMETER.)"
+        )
+    })
+    .lines()
+    .map(|l| {
+        if l.contains(" = EDGE_CURVE(") {
+            l.replace(",.T.);", ",.F.);") + "\n"
+        } else {
+            format!("{l}\n")
+        }
+    })
+    .collect::<String>();
+    let m = limn::io::read_model_bytes("trimmed.stp", flipped.as_bytes(), None).unwrap();
+    assert_eq!(summary(&m), summary(&with));
+    // One line (along z through the origin) moved by 10⁻³ along y: off the plane y = 0, whose
+    // face is left out naming the bound; within the plane x = 0 but off its vertices, whose
+    // face the vertex check leaves untrimmed.
+    let moved = bare.replace(
+        "#28 = CARTESIAN_POINT('',(0.,0.,0.));",
+        "#28 = CARTESIAN_POINT('',(0.,0.001,0.));",
+    );
+    assert_ne!(moved, bare);
+    let m = limn::io::read_model_bytes("moved.stp", moved.as_bytes(), None).unwrap();
+    assert_eq!(m.faces.len(), 4, "{:?}", m.warnings);
+    let warned = |place: &str, text: &str| {
+        m.warnings
+            .iter()
+            .any(|w| w.place == place && w.message.contains(text))
+    };
+    assert!(
+        warned("#237", "left out: edge #… has no pcurve and its curve #… may lie 1.000e-3 off the face's plane"),
+        "{:?}",
+        m.warnings
+    );
+    assert!(
+        warned(
+            "#17",
+            "used untrimmed: a pcurve's end lies 1.000e-3 from its edge's vertex"
+        ),
+        "{:?}",
+        m.warnings
+    );
+}

@@ -363,6 +363,15 @@ impl Reader<'_> {
                 message: format!("{} {why}", ids.len()),
             });
         }
+        if self.projected.edges > 0 {
+            self.warnings.push(Warning {
+                place: "file".into(),
+                message: format!(
+                    "{} edge(s) without a pcurve on their plane faces mapped into the planes from their model-space curves, each within {:.3e} of its plane",
+                    self.projected.edges, self.projected.largest_off_plane
+                ),
+            });
+        }
         if !model.faces.is_empty() {
             let loops: usize = model.faces.iter().map(|f| f.loops().count()).sum();
             self.warnings.push(Warning {
@@ -821,6 +830,9 @@ impl Reader<'_> {
                 "SURFACE_CURVE" | "SEAM_CURVE" | "BOUNDED_SURFACE_CURVE" | "INTERSECTION_CURVE"
             )
         {
+            if let Some(StepSurface::Plane(f)) = surface {
+                return self.projected_onto_plane(ec, geom, f, ends, same);
+            }
             return Ok(Err(format!(
                 "edge #{ec} has no parameter-space curve (its geometry is a {}); inverting a model-space curve onto the surface is not built yet",
                 inst.kind()
@@ -861,6 +873,9 @@ impl Reader<'_> {
             pcurves.push(self.reference(rep, first, "item")?);
         }
         if pcurves.is_empty() {
+            if let Some(StepSurface::Plane(f)) = surface {
+                return self.projected_onto_plane(ec, c3, f, ends, same);
+            }
             return Ok(Err(format!(
                 "edge #{ec} has no pcurve on the face's surface #{sid}; inverting its model-space curve onto the surface is not built yet"
             )));
@@ -998,6 +1013,50 @@ impl Reader<'_> {
             }
         }
         Ok(Ok(out))
+    }
+
+    /// An edge without a pcurve on a plane face: its model-space curve `id` mapped into the
+    /// plane's frame (exact, [`Curve::in_plane`]) on the range its vertices give, in the
+    /// curve's own direction, if the curve lies within [`VERTEX_GAP`] of the plane (the bound
+    /// of [`Curve::off_plane`], relative to `1 +` the vertices' largest coordinate).
+    fn projected_onto_plane(
+        &mut self,
+        ec: u64,
+        id: u64,
+        f: &PlaneFrame,
+        ends: &[Point3; 2],
+        same: bool,
+    ) -> Result<Result<Vec<Vec<ParameterCurve>>, String>, ReadError> {
+        let c = match self.model_curve(ec, id)? {
+            Ok(c) => c,
+            Err(w) => return Ok(Err(format!("edge #{ec} has no pcurve and {w}"))),
+        };
+        let (s, t) = if same {
+            (&ends[0], &ends[1])
+        } else {
+            (&ends[1], &ends[0])
+        };
+        let e = nurbs_ends(&c);
+        let Some(range) =
+            parameter_at(&c, e.as_ref(), s, false).zip(parameter_at(&c, e.as_ref(), t, true))
+        else {
+            return Ok(Err(format!(
+                "edge #{ec} has no pcurve and its vertices are not the ends of its curve #{id}"
+            )));
+        };
+        let off = c.off_plane(f, &range).to_f64();
+        let size = scale(s.iter().chain(t.iter())).to_f64();
+        if off > VERTEX_GAP * size {
+            return Ok(Err(format!(
+                "edge #{ec} has no pcurve and its curve #{id} may lie {off:.3e} off the face's plane (more than {VERTEX_GAP:.1e} of the part's size)"
+            )));
+        }
+        self.projected.edges += 1;
+        self.projected.largest_off_plane = self.projected.largest_off_plane.max(off);
+        Ok(self
+            .pieces_on(id, &c.in_plane(f), range)?
+            .map(|p| vec![p])
+            .map_err(|w| format!("edge #{ec}: {w}")))
     }
 
     /// The Bézier pieces of a plane curve on `[a, b]`.

@@ -36,6 +36,100 @@ impl Curve {
             Curve::Line { .. } => None,
         }
     }
+
+    /// The same point set run the other way: `t ↦ -t` (a B-spline's knots negated and
+    /// reversed with its control points and weights), exact.
+    pub(super) fn reversed(self) -> Curve {
+        match self {
+            Curve::Line { p, d } => Curve::Line {
+                p,
+                d: d.into_iter().map(|c| -c).collect(),
+            },
+            Curve::Nurbs {
+                degree,
+                knots,
+                mut points,
+                mut weights,
+            } => {
+                points.reverse();
+                weights.reverse();
+                Curve::Nurbs {
+                    degree,
+                    knots: knots.into_iter().rev().map(|k| -k).collect(),
+                    points,
+                    weights,
+                }
+            }
+        }
+    }
+
+    /// The image under the affine map `P ↦ ((P − o)·x, (P − o)·y)` of a model-space curve:
+    /// its coordinates in a plane's frame. Exact, and exactly the image (an affine map commutes
+    /// with the rational B-spline's weighted sum, weights kept).
+    pub(super) fn in_plane(&self, f: &PlaneFrame) -> Curve {
+        let at = |p: &[Rational]| {
+            let d: Vec<Rational> = p
+                .iter()
+                .zip(&f.o)
+                .map(|(a, b)| Rational::from(a - b))
+                .collect();
+            vec![dot(&d, &f.x), dot(&d, &f.y)]
+        };
+        match self {
+            Curve::Line { p, d } => Curve::Line {
+                p: at(p),
+                d: vec![dot(d, &f.x), dot(d, &f.y)],
+            },
+            Curve::Nurbs {
+                degree,
+                knots,
+                points,
+                weights,
+            } => Curve::Nurbs {
+                degree: *degree,
+                knots: knots.clone(),
+                points: points.iter().map(|p| at(p)).collect(),
+                weights: weights.clone(),
+            },
+        }
+    }
+
+    /// A bound (max norm) on the distance between the model-space curve on `range` and its
+    /// image through [`Curve::in_plane`] mapped back onto the plane `o + u x + v y`: the
+    /// difference `(I − x xᵀ − y yᵀ)(C(t) − o)` is affine in `C(t)`, so on a line it is
+    /// largest at an end of the range and on a B-spline (positive weights) it lies in the
+    /// convex hull of the differences at the control points (`proofs/trimmed-faces.md` 9).
+    pub(super) fn off_plane(&self, f: &PlaneFrame, range: &(Rational, Rational)) -> Rational {
+        let off = |p: &[Rational]| {
+            let d: Vec<Rational> = p
+                .iter()
+                .zip(&f.o)
+                .map(|(a, b)| Rational::from(a - b))
+                .collect();
+            let (a, b) = (dot(&d, &f.x), dot(&d, &f.y));
+            (0..3)
+                .map(|k| {
+                    (&d[k] - Rational::from(&a * &f.x[k]) - Rational::from(&b * &f.y[k])).abs()
+                })
+                .max()
+                .unwrap_or_default()
+        };
+        match self {
+            Curve::Line { p, d } => [&range.0, &range.1]
+                .map(|t| {
+                    let q: Vec<Rational> = p
+                        .iter()
+                        .zip(d)
+                        .map(|(a, b)| a + Rational::from(t * b))
+                        .collect();
+                    off(&q)
+                })
+                .into_iter()
+                .max()
+                .unwrap_or_default(),
+            Curve::Nurbs { points, .. } => points.iter().map(|p| off(p)).max().unwrap_or_default(),
+        }
+    }
 }
 
 /// A surface a face lies on.
@@ -182,6 +276,59 @@ impl Reader<'_> {
             y,
             z_exact && x_exact,
         ))
+    }
+
+    /// An edge's model-space curve, to be mapped onto a plane: what [`Reader::curve`] reads,
+    /// a `TRIMMED_CURVE` as its basis curve (the edge's vertices trim it; run the other way
+    /// where its sense disagrees with the basis) and a `POLYLINE` as the degree-1 B-spline
+    /// through its points.
+    pub(super) fn model_curve(
+        &self,
+        from: u64,
+        id: u64,
+    ) -> Result<Result<Curve, String>, ReadError> {
+        let inst = self.instance(from, id, "curve")?;
+        match (inst.complex, inst.records[0].name.as_str()) {
+            (false, "TRIMMED_CURVE") => {
+                let a = &inst.records[0].params;
+                let basis =
+                    self.reference(id, self.attr(id, a, 1, "basis_curve")?, "basis_curve")?;
+                let sense = self.logical(
+                    id,
+                    self.attr(id, a, 4, "sense_agreement")?,
+                    "sense_agreement",
+                )?;
+                if basis == id {
+                    return Err(self.err(id, "the trimmed curve is its own basis curve"));
+                }
+                // A basis that is itself trimmed is refused (no chains: a cycle cannot hang).
+                Ok(self
+                    .curve(id, basis, 3)?
+                    .map(|c| if sense { c } else { c.reversed() }))
+            }
+            (false, "POLYLINE") => {
+                let a = &inst.records[0].params;
+                let pts = self.list(id, self.attr(id, a, 1, "points")?, "points")?;
+                if pts.len() < 2 {
+                    return Err(self.err(id, format!("a polyline of {} point(s)", pts.len())));
+                }
+                let points: Vec<Vec<Rational>> = pts
+                    .iter()
+                    .map(|p| self.point(id, self.reference(id, p, "point")?, 3))
+                    .collect::<Result<_, _>>()?;
+                let n = points.len();
+                let mut knots = vec![Rational::from(0)];
+                knots.extend((0..n).map(|k| Rational::from(k as u64)));
+                knots.push(Rational::from((n - 1) as u64));
+                Ok(Ok(Curve::Nurbs {
+                    degree: 1,
+                    knots,
+                    weights: vec![Rational::from(1); n],
+                    points,
+                }))
+            }
+            _ => self.curve(from, id, 3),
+        }
     }
 
     /// A curve of dimension `dim`, or why it is not read.
@@ -471,14 +618,15 @@ impl Reader<'_> {
             _ if inst
                 .records
                 .iter()
-                .any(|r| r.name.ends_with("_SURFACE") || r.name == "PLANE") =>
+                .any(|r| r.name.contains("SURFACE") || r.name == "PLANE") =>
             {
                 Ok(Err(format!(
                     "its surface #{id} is a {}, which limn does not read yet",
                     inst.kind()
                 )))
             }
-            // Not a surface at all: the file is broken.
+            // Not a surface at all (every surface entity of Part 42 but PLANE is named for
+            // one): the file is broken.
             _ => Err(self.err(
                 from,
                 format!("its surface #{id} is a {}, not a surface", inst.kind()),

@@ -36,6 +36,7 @@ pub(super) fn read(name: &str, bytes: &[u8]) -> Result<Model, ReadError> {
         ex,
         warnings: Vec::new(),
         bezier_points: 0,
+        projected: Projected::default(),
     };
     r.read_model()
 }
@@ -46,6 +47,17 @@ struct Reader<'a> {
     warnings: Vec<crate::model::Warning>,
     /// Bézier control points the surfaces read so far split into.
     bezier_points: usize,
+    /// Edges without a pcurve mapped onto their faces' planes.
+    projected: Projected,
+}
+
+/// Edges without a pcurve whose model-space curves were mapped onto their faces' planes.
+#[derive(Default)]
+struct Projected {
+    /// How many (an edge counts once per face).
+    edges: usize,
+    /// The largest bound on an edge's distance from its plane ([`geometry::Curve::off_plane`]).
+    largest_off_plane: f64,
 }
 
 impl Reader<'_> {
