@@ -332,3 +332,112 @@ fn step_plane_faces_without_pcurves_map_their_edges_into_the_plane() {
         m.warnings
     );
 }
+
+/// A 4 × 4 square plate on the plane z = 0 with a hole: the circle of radius 1 about (2, 2)
+/// (`hole` the circle's entity text, `edge` its edge's start and end vertex and sense), no
+/// pcurves anywhere.
+fn plate_with_a_hole(hole: &str, edge: &str) -> String {
+    format!(
+        "ISO-10303-21;\nHEADER;\nENDSEC;\nDATA;\n\
+#1 = CARTESIAN_POINT('',(0.,0.,0.));\n#2 = DIRECTION('',(0.,0.,1.));\n\
+#3 = DIRECTION('',(1.,0.,0.));\n#4 = AXIS2_PLACEMENT_3D('',#1,#2,#3);\n#5 = PLANE('',#4);\n\
+#10 = CARTESIAN_POINT('',(0.,0.,0.));\n#11 = VERTEX_POINT('',#10);\n\
+#12 = CARTESIAN_POINT('',(4.,0.,0.));\n#13 = VERTEX_POINT('',#12);\n\
+#14 = CARTESIAN_POINT('',(4.,4.,0.));\n#15 = VERTEX_POINT('',#14);\n\
+#16 = CARTESIAN_POINT('',(0.,4.,0.));\n#17 = VERTEX_POINT('',#16);\n\
+#20 = DIRECTION('',(1.,0.,0.));\n#21 = VECTOR('',#20,1.);\n#22 = LINE('',#10,#21);\n\
+#23 = EDGE_CURVE('',#11,#13,#22,.T.);\n\
+#24 = DIRECTION('',(0.,1.,0.));\n#25 = VECTOR('',#24,1.);\n#26 = LINE('',#12,#25);\n\
+#27 = EDGE_CURVE('',#13,#15,#26,.T.);\n\
+#28 = DIRECTION('',(-1.,0.,0.));\n#29 = VECTOR('',#28,1.);\n#30 = LINE('',#14,#29);\n\
+#31 = EDGE_CURVE('',#15,#17,#30,.T.);\n\
+#32 = DIRECTION('',(0.,-1.,0.));\n#33 = VECTOR('',#32,1.);\n#34 = LINE('',#16,#33);\n\
+#35 = EDGE_CURVE('',#17,#11,#34,.T.);\n\
+#40 = CARTESIAN_POINT('',(2.,2.,0.));\n#41 = AXIS2_PLACEMENT_3D('',#40,#2,#3);\n\
+#42 = {hole};\n\
+#43 = CARTESIAN_POINT('',(2.6,2.8,0.));\n#44 = VERTEX_POINT('',#43);\n\
+#45 = CARTESIAN_POINT('',(1.4,1.2,0.));\n#46 = VERTEX_POINT('',#45);\n\
+#47 = EDGE_CURVE('',{edge});\n\
+#50 = ORIENTED_EDGE('',*,*,#23,.T.);\n#51 = ORIENTED_EDGE('',*,*,#27,.T.);\n\
+#52 = ORIENTED_EDGE('',*,*,#31,.T.);\n#53 = ORIENTED_EDGE('',*,*,#35,.T.);\n\
+#54 = EDGE_LOOP('',(#50,#51,#52,#53));\n#55 = FACE_OUTER_BOUND('',#54,.T.);\n\
+#56 = ORIENTED_EDGE('',*,*,#47,.F.);\n#57 = EDGE_LOOP('',(#56));\n\
+#58 = FACE_BOUND('',#57,.T.);\n#60 = ADVANCED_FACE('',(#55,#58),#5,.T.);\n\
+ENDSEC;\nEND-ISO-10303-21;\n"
+    )
+}
+
+/// A circle edge without a pcurve on a plane: its image is the exact rational circle (each
+/// quarter's Bézier points on the circle at its ends, and points at rational parameters on it
+/// exactly), the loop closes at the vertex (3/5, 4/5) off the parameterisation's seam, and it is
+/// clockwise (the edge used against the circle's sense). A circle through a trimmed curve
+/// against its sense, from one vertex to another (a half circle each way round), reads too.
+#[test]
+fn step_circles_without_pcurves_are_exact_rational_arcs() {
+    let on_circle = |p: &[Rational]| {
+        let d = |k: usize| &p[k] - Rational::from(2);
+        d(0).square() + d(1).square() == 1
+    };
+    let text = plate_with_a_hole("CIRCLE('',#41,1.)", "#44,#44,#42,.T.");
+    let m = limn::io::read_model_bytes("hole.stp", text.as_bytes(), None).unwrap();
+    assert_eq!(m.faces.len(), 1, "{:?}", m.warnings);
+    let face = &m.faces[0];
+    assert_eq!(face.inner.len(), 1);
+    let hole = &face.inner[0];
+    assert_eq!(hole.orientation, Orientation::Clockwise);
+    // Five pieces: from the vertex to the seam's quarter end and the three quarters after
+    // it, and back to the vertex.
+    assert_eq!(hole.pieces.len(), 5, "{:?}", hole.pieces.len());
+    for p in &hole.pieces {
+        for t in [
+            Rational::from(0),
+            Rational::from((1, 3)),
+            Rational::from((5, 7)),
+        ] {
+            assert!(on_circle(&p.curve.eval(&t)), "{:?}", p.curve.eval(&t));
+        }
+    }
+    let vertex = vec![Rational::from((13, 5)), Rational::from((14, 5))];
+    assert_eq!(hole.pieces[0].curve.start(), vertex);
+    assert!(m
+        .warnings
+        .iter()
+        .any(|w| w.message.starts_with("5 edge(s) without a pcurve")
+            && w.message.ends_with("within 0.000e0 of its plane")));
+    // Two half circles between (13/5, 14/5) and (7/5, 6/5): one along the circle through
+    // (1, 2), one a trimmed curve against the circle's sense (clockwise, through (3, 2)), used
+    // backwards: together the whole circle, counter-clockwise.
+    let two = plate_with_a_hole(
+        "CIRCLE('',#41,1.)",
+        "#44,#46,#42,.T.);\n#48 = TRIMMED_CURVE('',#42,(#43),(#45),.F.,.CARTESIAN.);\n\
+#49 = EDGE_CURVE('',#44,#46,#48,.T.",
+    )
+    .replace(
+        "#56 = ORIENTED_EDGE('',*,*,#47,.F.);\n#57 = EDGE_LOOP('',(#56));",
+        "#56 = ORIENTED_EDGE('',*,*,#47,.T.);\n#59 = ORIENTED_EDGE('',*,*,#49,.F.);\n\
+#57 = EDGE_LOOP('',(#56,#59));",
+    );
+    let m = limn::io::read_model_bytes("halves.stp", two.as_bytes(), None).unwrap();
+    assert_eq!(m.faces.len(), 1, "{:?}", m.warnings);
+    let hole = &m.faces[0].inner[0];
+    assert_eq!(hole.orientation, Orientation::CounterClockwise);
+    for p in &hole.pieces {
+        assert!(on_circle(&p.curve.eval(&Rational::from((2, 9)))));
+    }
+    // Six pieces, through (1, 2) on the first half and (3, 2) (the circle's seam) on the other.
+    assert_eq!(hole.pieces.len(), 6);
+    for x in [1, 3] {
+        let p = vec![Rational::from(x), Rational::from(2)];
+        assert!(hole.pieces.iter().any(|q| q.curve.start() == p), "({x}, 2)");
+    }
+    // An ellipse with semi-axes 1 and 1/2 through (2, 2 ± 1/2): the pieces satisfy its
+    // equation exactly.
+    let e = plate_with_a_hole("ELLIPSE('',#41,1.,0.5)", "#44,#44,#42,.T.")
+        .replace("(2.6,2.8,0.)", "(2.,2.5,0.)");
+    let m = limn::io::read_model_bytes("ellipse.stp", e.as_bytes(), None).unwrap();
+    for p in &m.faces[0].inner[0].pieces {
+        let q = p.curve.eval(&Rational::from((3, 8)));
+        let (x, y) = (&q[0] - Rational::from(2), &q[1] - Rational::from(2));
+        assert_eq!(x.square() + Rational::from(4) * y.square(), 1);
+    }
+}

@@ -6,7 +6,7 @@ use super::Reader;
 use crate::io::trimmed::{self, DomainFailure, SurfaceInfo};
 use crate::io::{Place, ReadError};
 use crate::model::{
-    Brep, BrepEdge, Face, Format, Model, ModelPatch, PatchSource, TrimLoop, Warning,
+    Brep, BrepEdge, Face, Format, LoopError, Model, ModelPatch, PatchSource, TrimLoop, Warning,
 };
 use crate::number::Rational;
 use crate::surface::{NurbsCurve, NurbsSurface, ParameterCurve, Point3, RationalPatch};
@@ -30,6 +30,9 @@ const VERTEX_GAP: f64 = 1e-5;
 /// How far (relative to the larger side of the domain) a trimming curve may leave its surface's
 /// parameter domain and have its face used untrimmed rather than refused.
 const OUTSIDE_DOMAIN: f64 = 1e-3;
+
+/// [`trimmed::PARAMETER_GAP`], the gap a loop is closed across, as a fraction of the domain's side.
+const PARAMETER_GAP_F64: f64 = trimmed::PARAMETER_GAP.0 as f64 / trimmed::PARAMETER_GAP.1 as f64;
 
 /// A pcurve range whose ends lie this near the edge's vertices on the surface (relative to
 /// `1 +` their largest coordinate) is taken without searching for the nearest parameters.
@@ -605,6 +608,16 @@ impl Reader<'_> {
         for (lp, outer, curves) in loops {
             match TrimLoop::close(curves, &closing, Some(lp as usize)) {
                 Ok(l) => closed.push((outer, l)),
+                // Writers of STEP close loops to their model-space tolerance, which may leave
+                // pcurves a little apart: a gap within [`OUTSIDE_DOMAIN`] of the domain's side
+                // leaves the face untrimmed, a larger one is a broken file.
+                Err(LoopError::Gap { gap, tolerance, .. })
+                    if gap <= OUTSIDE_DOMAIN / PARAMETER_GAP_F64 * tolerance =>
+                {
+                    return Ok(Err(Untrimmed::Whole(format!(
+                        "loop #{lp} does not close by {gap:.3e} in the surface's parameters"
+                    ))))
+                }
                 Err(e) => return Err(self.err(lp, format!("loop: {e}"))),
             }
         }
@@ -1027,7 +1040,7 @@ impl Reader<'_> {
         ends: &[Point3; 2],
         same: bool,
     ) -> Result<Result<Vec<Vec<ParameterCurve>>, String>, ReadError> {
-        let c = match self.model_curve(ec, id)? {
+        let (c, conic) = match self.model_curve(ec, id)? {
             Ok(c) => c,
             Err(w) => return Ok(Err(format!("edge #{ec} has no pcurve and {w}"))),
         };
@@ -1036,15 +1049,41 @@ impl Reader<'_> {
         } else {
             (&ends[1], &ends[0])
         };
-        let e = nurbs_ends(&c);
-        let Some(range) =
-            parameter_at(&c, e.as_ref(), s, false).zip(parameter_at(&c, e.as_ref(), t, true))
-        else {
-            return Ok(Err(format!(
-                "edge #{ec} has no pcurve and its vertices are not the ends of its curve #{id}"
-            )));
+        // The ranges the edge runs over: on a conic from the start vertex's parameter to the
+        // end's, across the parameterisation's seam when the end comes first (the whole conic
+        // when the vertices are one point).
+        let ranges = match &conic {
+            Some(k) => {
+                let [d0, d1] = k.domain();
+                let (a, b) = (k.parameter(s), k.parameter(t));
+                if a < b {
+                    vec![(a, b)]
+                } else {
+                    [(a, d1), (d0, b)]
+                        .into_iter()
+                        .filter(|(x, y)| x < y)
+                        .collect()
+                }
+            }
+            None => {
+                let e = nurbs_ends(&c);
+                let Some(range) = parameter_at(&c, e.as_ref(), s, false).zip(parameter_at(
+                    &c,
+                    e.as_ref(),
+                    t,
+                    true,
+                )) else {
+                    return Ok(Err(format!(
+                        "edge #{ec} has no pcurve and its vertices are not the ends of its curve #{id}"
+                    )));
+                };
+                vec![range]
+            }
         };
-        let off = c.off_plane(f, &range).to_f64();
+        let off = ranges
+            .iter()
+            .map(|r| c.off_plane(f, r).to_f64())
+            .fold(0.0, f64::max);
         let size = scale(s.iter().chain(t.iter())).to_f64();
         if off > VERTEX_GAP * size {
             return Ok(Err(format!(
@@ -1053,10 +1092,15 @@ impl Reader<'_> {
         }
         self.projected.edges += 1;
         self.projected.largest_off_plane = self.projected.largest_off_plane.max(off);
-        Ok(self
-            .pieces_on(id, &c.in_plane(f), range)?
-            .map(|p| vec![p])
-            .map_err(|w| format!("edge #{ec}: {w}")))
+        let image = c.in_plane(f);
+        let mut pieces = Vec::new();
+        for r in ranges {
+            match self.pieces_on(id, &image, r)? {
+                Ok(p) => pieces.extend(p),
+                Err(w) => return Ok(Err(format!("edge #{ec}: {w}"))),
+            }
+        }
+        Ok(Ok(vec![pieces]))
     }
 
     /// The Bézier pieces of a plane curve on `[a, b]`.

@@ -141,6 +141,108 @@ pub(super) enum StepSurface {
     Plane(Box<PlaneFrame>),
 }
 
+/// A circle or an ellipse `c + a cos θ x + b sin θ y` (`x`, `y` its placement's unit axes),
+/// for edges mapped into a plane.
+#[derive(Clone, Debug)]
+pub(super) struct Conic {
+    c: Point3,
+    x: Point3,
+    y: Point3,
+    /// The semi-axes `a` along `x` and `b` along `y` (equal on a circle).
+    radii: [Rational; 2],
+    /// Run the other way (a trimmed curve against its sense): the parameter negated.
+    reversed: bool,
+}
+
+impl Conic {
+    /// The conic as an exact rational B-spline: four quarter arcs of degree 2 on the knots
+    /// `0,0,0,1,1,2,2,3,3,4,4,4`, quarter `k` the affine image of the unit circle's
+    /// `((1 − s²)/(1 + s²), 2s/(1 + s²))` rotated by `k` right angles (`s = t − k`: Bézier
+    /// points `e_k`, `e_k + e_{k+1}`, `e_{k+1}` with weights `1, 1, 2`, scaled by `2^k` so that
+    /// the quarters join), run backwards when `reversed`.
+    pub(super) fn curve(&self) -> Curve {
+        let [a, b] = &self.radii;
+        let ax: Vec<Rational> = self.x.iter().map(|v| Rational::from(v * a)).collect();
+        let by: Vec<Rational> = self.y.iter().map(|v| Rational::from(v * b)).collect();
+        let neg = |v: &[Rational]| v.iter().map(|c| -c.clone()).collect::<Vec<_>>();
+        let e = [ax.clone(), by.clone(), neg(&ax), neg(&by), ax];
+        let at = |d: &[Rational]| -> Vec<Rational> {
+            self.c.iter().zip(d).map(|(c, d)| c + d.clone()).collect()
+        };
+        let mut points = Vec::with_capacity(9);
+        let mut weights = Vec::with_capacity(9);
+        for k in 0..4 {
+            let sum: Vec<Rational> = e[k]
+                .iter()
+                .zip(&e[k + 1])
+                .map(|(p, q)| Rational::from(p + q))
+                .collect();
+            points.push(at(&e[k]));
+            points.push(at(&sum));
+            let w = Rational::from(1u32 << k);
+            weights.push(w.clone());
+            weights.push(w);
+        }
+        points.push(at(&e[4]));
+        weights.push(Rational::from(16));
+        let knots = [0, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 4]
+            .map(Rational::from)
+            .to_vec();
+        let c = Curve::Nurbs {
+            degree: 2,
+            knots,
+            points,
+            weights,
+        };
+        if self.reversed {
+            c.reversed()
+        } else {
+            c
+        }
+    }
+
+    /// The parameter of [`Conic::curve`] at the point of the conic nearest `p` in the sense
+    /// of the stereographic map (exact for a point on the conic; for a point off it, the
+    /// conic's point on the ray from the centre, up to the quarter's parameterisation): the
+    /// quarter `k` whose right angle holds `p`'s direction, and `s = Y'/(1 + X')` there,
+    /// `(X', Y')` the point's coordinates on the unit circle's scale rotated back by `k`.
+    pub(super) fn parameter(&self, p: &[Rational]) -> Rational {
+        let d: Vec<Rational> = p
+            .iter()
+            .zip(&self.c)
+            .map(|(a, b)| Rational::from(a - b))
+            .collect();
+        let x = dot(&d, &self.x) / &self.radii[0];
+        let y = dot(&d, &self.y) / &self.radii[1];
+        let rotated = [
+            (x.clone(), y.clone()),
+            (y.clone(), -x.clone()),
+            (-x.clone(), -y.clone()),
+            (-y, x),
+        ];
+        let (k, (xr, yr)) = rotated
+            .into_iter()
+            .enumerate()
+            .find(|(_, (a, b))| *a > 0 && *b >= 0)
+            .unwrap_or((0, (Rational::from(0), Rational::from(0))));
+        let t = Rational::from(k as u32) + yr / (xr + Rational::from(1));
+        if self.reversed {
+            -t
+        } else {
+            t
+        }
+    }
+
+    /// The parameter domain of [`Conic::curve`].
+    pub(super) fn domain(&self) -> [Rational; 2] {
+        if self.reversed {
+            [Rational::from(-4), Rational::from(0)]
+        } else {
+            [Rational::from(0), Rational::from(4)]
+        }
+    }
+}
+
 /// The plane `o + u x + v y`: `x` and `y` the placement's unit axes.
 #[derive(Clone, Debug)]
 pub(super) struct PlaneFrame {
@@ -278,7 +380,8 @@ impl Reader<'_> {
         ))
     }
 
-    /// An edge's model-space curve, to be mapped onto a plane: what [`Reader::curve`] reads,
+    /// An edge's model-space curve, to be mapped onto a plane: what [`Reader::curve`] reads, a
+    /// `CIRCLE` or `ELLIPSE` as its exact rational B-spline ([`Conic::curve`]) with the conic,
     /// a `TRIMMED_CURVE` as its basis curve (the edge's vertices trim it; run the other way
     /// where its sense disagrees with the basis) and a `POLYLINE` as the degree-1 B-spline
     /// through its points.
@@ -286,9 +389,36 @@ impl Reader<'_> {
         &self,
         from: u64,
         id: u64,
-    ) -> Result<Result<Curve, String>, ReadError> {
+    ) -> Result<Result<(Curve, Option<Conic>), String>, ReadError> {
         let inst = self.instance(from, id, "curve")?;
         match (inst.complex, inst.records[0].name.as_str()) {
+            (false, "CIRCLE" | "ELLIPSE") => {
+                let a = &inst.records[0].params;
+                let pl = self.reference(id, self.attr(id, a, 1, "position")?, "position")?;
+                let (c, x, y, _) = self.placement(id, pl)?;
+                let circle = inst.records[0].name == "CIRCLE";
+                let mut radii = Vec::with_capacity(2);
+                let first = if circle { "radius" } else { "semi_axis_1" };
+                for (k, what) in [(2, first), (3, "semi_axis_2")] {
+                    if k == 3 && circle {
+                        break;
+                    }
+                    let r = self.real(id, self.attr(id, a, k, what)?, what)?;
+                    if r <= 0 {
+                        return Err(self.err(id, format!("the {what} {r} is not positive")));
+                    }
+                    radii.push(r);
+                }
+                let b = radii.last().cloned().unwrap_or_default();
+                let conic = Conic {
+                    c,
+                    x,
+                    y,
+                    radii: [radii[0].clone(), b],
+                    reversed: false,
+                };
+                Ok(Ok((conic.curve(), Some(conic))))
+            }
             (false, "TRIMMED_CURVE") => {
                 let a = &inst.records[0].params;
                 let basis =
@@ -302,9 +432,27 @@ impl Reader<'_> {
                     return Err(self.err(id, "the trimmed curve is its own basis curve"));
                 }
                 // A basis that is itself trimmed is refused (no chains: a cycle cannot hang).
-                Ok(self
-                    .curve(id, basis, 3)?
-                    .map(|c| if sense { c } else { c.reversed() }))
+                let basis = match self.instance(id, basis, "basis curve")?.records[0].name.as_str() {
+                    "TRIMMED_CURVE" => {
+                        return Ok(Err(format!(
+                            "its curve #{id} is a trimmed curve of a trimmed curve, which limn does not read yet"
+                        )))
+                    }
+                    _ => self.model_curve(id, basis)?,
+                };
+                Ok(basis.map(|(c, conic)| {
+                    if sense {
+                        (c, conic)
+                    } else {
+                        (
+                            c.reversed(),
+                            conic.map(|k| Conic {
+                                reversed: !k.reversed,
+                                ..k
+                            }),
+                        )
+                    }
+                }))
             }
             (false, "POLYLINE") => {
                 let a = &inst.records[0].params;
@@ -320,14 +468,17 @@ impl Reader<'_> {
                 let mut knots = vec![Rational::from(0)];
                 knots.extend((0..n).map(|k| Rational::from(k as u64)));
                 knots.push(Rational::from((n - 1) as u64));
-                Ok(Ok(Curve::Nurbs {
-                    degree: 1,
-                    knots,
-                    weights: vec![Rational::from(1); n],
-                    points,
-                }))
+                Ok(Ok((
+                    Curve::Nurbs {
+                        degree: 1,
+                        knots,
+                        weights: vec![Rational::from(1); n],
+                        points,
+                    },
+                    None,
+                )))
             }
-            _ => self.curve(from, id, 3),
+            _ => Ok(self.curve(from, id, 3)?.map(|c| (c, None))),
         }
     }
 
