@@ -114,6 +114,10 @@ pub struct Model {
     pub faces: Vec<Face>,
     /// The B-rep topology the file states, if any (IGES 186/514/510/508/504/502).
     pub brep: Option<Brep>,
+    /// Surfaces and faces of the file that are not in the model (of a type, or with edges,
+    /// limn does not read yet; each named in `warnings`): analyses that depend on the whole
+    /// part (hidden lines, visible regions) state it among their assumptions.
+    pub left_out: usize,
 }
 
 impl Model {
@@ -141,7 +145,18 @@ impl Model {
             suggested_weld: None,
             faces: Vec::new(),
             brep: None,
+            left_out: 0,
         }
+    }
+
+    /// The assumption of an analysis of the whole part when the reader left some of it out.
+    pub fn left_out_assumption(&self) -> Option<String> {
+        (self.left_out > 0).then(|| {
+            format!(
+                "the part is what limn read of the file: {} of its surfaces or faces are left out (named in the reader's warnings, `limn info`), and what they would hide or show is not drawn",
+                self.left_out
+            )
+        })
     }
 
     /// The axis-aligned bounding box of all control points and mesh vertices (it contains

@@ -110,8 +110,16 @@ impl Document for WithResult<'_, HlrReport, HiddenLines> {
     report_parts!();
     fn svg(&self, model: &Model, view: &View) -> Option<String> {
         let r = &self.report;
+        let left_out = if model.left_out > 0 {
+            format!(
+                " ({} surfaces or faces of the file left out)",
+                model.left_out
+            )
+        } else {
+            String::new()
+        };
         let title = format!(
-            "{}: hidden lines, {} pieces, {}",
+            "{}{left_out}: hidden lines, {} pieces, {}",
             r.model,
             r.pieces.len(),
             if r.certified {

@@ -259,3 +259,33 @@ fn a_step_box_draws_nine_visible_edges_and_three_hidden() {
     assert!((l0 - 27.0).abs() < 1e-9 && (l1 - 9.0).abs() < 1e-9, "{t:?}");
     assert!(t.keys().all(|(_, q)| matches!(q, Some(0 | 1))), "{t:?}");
 }
+
+/// A drawing of a part the reader left a face out of says so among its assumptions (the box
+/// with one face on a surface limn does not read: five faces drawn, the sixth named).
+#[test]
+fn a_drawing_with_faces_left_out_states_it() {
+    let path = format!(
+        "{}/fixtures/step/occt-written/box.stp",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let text = std::fs::read_to_string(path).unwrap().replace(
+        "#32 = PLANE('',#33);",
+        "#32 = SURFACE_OF_LINEAR_EXTRUSION('',#27,#29);",
+    );
+    let model = limn::io::read_model_bytes("swept.stp", text.as_bytes(), None).unwrap();
+    let h = hidden_lines(&model, &View::direction([1, 2, 3]), &HlrOptions::default()).unwrap();
+    assert!(
+        h.assumptions
+            .iter()
+            .any(|a| a.contains("1 of its surfaces or faces are left out")),
+        "{:?}",
+        h.assumptions
+    );
+    let whole = limn::read_model(std::path::Path::new(&format!(
+        "{}/fixtures/step/occt-written/box.stp",
+        env!("CARGO_MANIFEST_DIR")
+    )))
+    .unwrap();
+    let h = hidden_lines(&whole, &View::direction([1, 2, 3]), &HlrOptions::default()).unwrap();
+    assert!(!h.assumptions.iter().any(|a| a.contains("left out")));
+}

@@ -193,6 +193,7 @@ fn step_faces_on_unread_surfaces_are_left_out_and_non_surfaces_refused() {
     let swept = text.replace(plane, "#32 = SURFACE_OF_LINEAR_EXTRUSION('',#27,#29);");
     let m = limn::io::read_model_bytes("swept.stp", swept.as_bytes(), None).unwrap();
     assert_eq!(m.faces.len(), 5);
+    assert_eq!(m.left_out, 1);
     assert!(
         m.warnings.iter().any(|w| w.place == "#17"
             && w.message.contains("left out")
@@ -440,4 +441,128 @@ fn step_circles_without_pcurves_are_exact_rational_arcs() {
         let (x, y) = (&q[0] - Rational::from(2), &q[1] - Rational::from(2));
         assert_eq!(x.square() + Rational::from(4) * y.square(), 1);
     }
+}
+
+/// A STEP file of one face on the unit cylinder about the z axis (no pcurves): `body` holds the
+/// edges (instances from #100 on) and the loops; the cylinder is #5, heights along +z.
+fn on_the_unit_cylinder(body: &str, bounds: &str) -> String {
+    format!(
+        "ISO-10303-21;\nHEADER;\nENDSEC;\nDATA;\n\
+#1 = CARTESIAN_POINT('',(0.,0.,0.));\n#2 = DIRECTION('',(0.,0.,1.));\n\
+#3 = DIRECTION('',(1.,0.,0.));\n#4 = AXIS2_PLACEMENT_3D('',#1,#2,#3);\n\
+#5 = CYLINDRICAL_SURFACE('',#4,1.);\n\
+#6 = CARTESIAN_POINT('',(0.,0.,2.));\n#7 = AXIS2_PLACEMENT_3D('',#6,#2,#3);\n\
+#8 = CIRCLE('',#4,1.);\n#9 = CIRCLE('',#7,1.);\n\
+#10 = VECTOR('',#2,1.);\n\
+{body}\
+#90 = ADVANCED_FACE('',({bounds}),#5,.T.);\n\
+ENDSEC;\nEND-ISO-10303-21;\n"
+    )
+}
+
+/// Vertices `#1{k}0` at angle `k` (0, 90, 180, 270 degrees as k = 0..3) on the circles z = 0
+/// (`#1k0`) and z = 2 (`#1k5`), with the rulings `#2k0` through them.
+fn cylinder_vertices() -> String {
+    let mut s = String::new();
+    for (k, (x, y)) in [(1, 0), (0, 1), (-1, 0), (0, -1)].into_iter().enumerate() {
+        for (j, z) in [(0, 0), (5, 2)] {
+            s.push_str(&format!(
+                "#1{k}{} = CARTESIAN_POINT('',({x}.,{y}.,{z}.));\n#1{k}{} = VERTEX_POINT('',#1{k}{});\n",
+                j,
+                j + 1,
+                j
+            ));
+        }
+        s.push_str(&format!("#2{k}0 = LINE('',#1{k}0,#10);\n"));
+    }
+    s
+}
+
+/// A cylinder face's loops are mapped from model space onto the exact rational cylinder
+/// (`proofs/trimmed-faces.md` 9, claim 4): a band between two end circles is the whole patch
+/// (its domain the outer boundary), a half cylinder between two rulings is the rectangle of its
+/// parameters, one across the seam is laid out on the turn that holds it; the patches lie on
+/// the cylinder exactly.
+#[test]
+fn step_cylinder_faces_map_rulings_and_circles_onto_the_exact_cylinder() {
+    let on_cylinder = |m: &Model| {
+        for p in &m.patches {
+            for (s, t) in [(1, 3), (2, 7), (5, 9)] {
+                let q = p
+                    .surface
+                    .eval(&Rational::from((s, 10)), &Rational::from((t, 10)));
+                assert_eq!(q[0].clone().square() + q[1].clone().square(), 1);
+            }
+        }
+    };
+    // The band: two full circles from the vertex at angle 0, no seam edge.
+    let v = cylinder_vertices();
+    let band = on_the_unit_cylinder(
+        &format!(
+            "{v}#30 = EDGE_CURVE('',#101,#101,#8,.T.);\n#31 = EDGE_CURVE('',#106,#106,#9,.T.);\n\
+#32 = ORIENTED_EDGE('',*,*,#30,.T.);\n#33 = ORIENTED_EDGE('',*,*,#31,.F.);\n\
+#34 = EDGE_LOOP('',(#32));\n#35 = EDGE_LOOP('',(#33));\n\
+#36 = FACE_OUTER_BOUND('',#34,.T.);\n#37 = FACE_BOUND('',#35,.T.);\n"
+        ),
+        "#36,#37",
+    );
+    let m = limn::io::read_model_bytes("band.stp", band.as_bytes(), None).unwrap();
+    assert_eq!(m.faces.len(), 1, "{:?}", m.warnings);
+    let f = &m.faces[0];
+    assert!(f.outer.is_none() && f.inner.is_empty(), "{f:?}");
+    assert_eq!(
+        f.domain,
+        [
+            [Rational::from(0), Rational::from(4)],
+            [Rational::from(0), Rational::from(2)]
+        ]
+    );
+    on_cylinder(&m);
+    // Half a cylinder, angles 0..180: rulings at t = 0 and t = 2, half circles between.
+    let half = |from: usize, to: usize| {
+        on_the_unit_cylinder(
+            &format!(
+                "{v}#30 = EDGE_CURVE('',#1{from}1,#1{to}1,#8,.T.);\n\
+#31 = EDGE_CURVE('',#1{from}6,#1{to}6,#9,.T.);\n\
+#32 = EDGE_CURVE('',#1{from}1,#1{from}6,#2{from}0,.T.);\n\
+#33 = EDGE_CURVE('',#1{to}1,#1{to}6,#2{to}0,.T.);\n\
+#40 = ORIENTED_EDGE('',*,*,#30,.T.);\n#41 = ORIENTED_EDGE('',*,*,#33,.T.);\n\
+#42 = ORIENTED_EDGE('',*,*,#31,.F.);\n#43 = ORIENTED_EDGE('',*,*,#32,.F.);\n\
+#44 = EDGE_LOOP('',(#40,#41,#42,#43));\n#45 = FACE_OUTER_BOUND('',#44,.T.);\n"
+            ),
+            "#45",
+        )
+    };
+    let box_of = |m: &Model| {
+        let l = m.faces[0].outer.as_ref().expect("an outer loop");
+        let mut lo = [f64::MAX; 2];
+        let mut hi = [f64::MIN; 2];
+        for p in &l.pieces {
+            for q in p.curve.points() {
+                for k in 0..2 {
+                    lo[k] = lo[k].min(q[k].to_f64());
+                    hi[k] = hi[k].max(q[k].to_f64());
+                }
+            }
+        }
+        (lo, hi, l.orientation)
+    };
+    let text = half(0, 2);
+    let m = limn::io::read_model_bytes("half.stp", text.as_bytes(), None).unwrap();
+    assert_eq!(m.faces.len(), 1, "{:?}", m.warnings);
+    assert_eq!(
+        box_of(&m),
+        ([0.0, 0.0], [2.0, 2.0], Orientation::CounterClockwise)
+    );
+    on_cylinder(&m);
+    // Angles 270..90 through the seam: the turn [1, 5] holds t from 3 to 5.
+    let text = half(3, 1);
+    let m = limn::io::read_model_bytes("across.stp", text.as_bytes(), None).unwrap();
+    assert_eq!(m.faces.len(), 1, "{:?}", m.warnings);
+    assert_eq!(
+        box_of(&m),
+        ([3.0, 0.0], [5.0, 2.0], Orientation::CounterClockwise)
+    );
+    assert_eq!(m.faces[0].domain[0], [Rational::from(1), Rational::from(5)]);
+    on_cylinder(&m);
 }

@@ -514,6 +514,7 @@ impl Reader<'_> {
                 _ => {}
             }
         }
+        model.left_out = skipped.values().sum();
         for (kind, n) in skipped {
             self.warnings.push(Warning {
                 place: "file".into(),

@@ -1,7 +1,7 @@
 //! STEP topology (ISO 10303-42): faces, their bounds and loops, oriented edges and edge curves
 //! with their pcurves, read into trimmed faces on exact patches and the B-rep's topology.
 
-use super::geometry::{dot, Curve, PlaneFrame, StepSurface};
+use super::geometry::{cross3, dot, Curve, Cylinder, PlaneFrame, StepSurface};
 use super::Reader;
 use crate::io::trimmed::{self, DomainFailure, SurfaceInfo};
 use crate::io::{Place, ReadError};
@@ -149,31 +149,6 @@ fn parameter_at(
     }
 }
 
-/// The point of a curve at `t`, exact (`None` outside a B-spline curve's domain).
-fn curve_point(c: &Curve, t: &Rational) -> Option<Vec<Rational>> {
-    match c {
-        Curve::Line { p, d } => Some(
-            p.iter()
-                .zip(d)
-                .map(|(x, y)| x + Rational::from(t * y))
-                .collect(),
-        ),
-        Curve::Nurbs {
-            degree,
-            knots,
-            points,
-            weights,
-        } => {
-            let d = c.domain()?;
-            if *t < d[0] || *t > d[1] {
-                return None;
-            }
-            let n = NurbsCurve::<3>::new(*degree, knots.clone(), points, weights, None).ok()?;
-            Some(n.eval(t))
-        }
-    }
-}
-
 /// The parameter interval in which the line `p + t d` lies in the box `domain`, if any.
 fn clip_line(
     p: &[Rational],
@@ -298,7 +273,156 @@ fn surface_point(s: &StepSurface, u: &Rational, v: &Rational) -> Point3 {
         StepSurface::Plane(f) => {
             [0, 1, 2].map(|k| &f.o[k] + Rational::from(u * &f.x[k]) + Rational::from(v * &f.y[k]))
         }
+        // t outside [0, 4] (never made by the reader) is clamped to the seam.
+        StepSurface::Cylinder(c) => surface_point_of(c, u, v),
     }
+}
+
+/// A cylinder's point at `(t, v)` (`t` modulo 4).
+fn surface_point_of(c: &Cylinder, t: &Rational, v: &Rational) -> Point3 {
+    c.point(t, v).unwrap_or_else(|| c.circle.c.clone())
+}
+
+/// A parameter curve moved by `d` in `t` (exact: `X + d W` in homogeneous form).
+fn shifted(c: &ParameterCurve, d: &Rational) -> ParameterCurve {
+    let hom = c
+        .homogeneous()
+        .iter()
+        .map(|h| {
+            [
+                &h[0] + Rational::from(d * &h[2]),
+                h[1].clone(),
+                h[2].clone(),
+            ]
+        })
+        .collect();
+    ParameterCurve::from_homogeneous(hom).unwrap_or_else(|| c.clone())
+}
+
+/// The least and largest `v` of the loops' control points.
+fn heights(loops: &[ReadLoop]) -> Option<[Rational; 2]> {
+    let mut vs = loops
+        .iter()
+        .flat_map(|(_, _, c)| c.iter())
+        .flat_map(|(c, _)| c.points())
+        .map(|p| p[1].clone());
+    let first = vs.next()?;
+    let (lo, hi) = vs.fold((first.clone(), first), |(lo, hi), v| {
+        (lo.min(v.clone()), hi.max(v))
+    });
+    Some([lo, hi])
+}
+
+/// The least and largest `t` of a loop's control points.
+fn t_range(curves: &[(ParameterCurve, Option<usize>)]) -> Option<(Rational, Rational)> {
+    let mut ts = curves
+        .iter()
+        .flat_map(|(c, _)| c.points())
+        .map(|p| p[0].clone());
+    let first = ts.next()?;
+    Some(ts.fold((first.clone(), first), |(lo, hi), t| {
+        (lo.min(t.clone()), hi.max(t))
+    }))
+}
+
+/// A cylinder face's loops laid out on one turn `[m, m + 4]` of `t`: where a loop jumps across
+/// the seam (a piece starting 4 away in `t` from where the one before ends, at its height), the
+/// rest of the loop is moved by 4 to join it; each loop that then closes is moved by a multiple
+/// of 4 into the turn, for the least whole quarter `m` whose turn holds them all. A loop that
+/// goes once round (its end 4 from its start) is an end circle of a band: two such, each at one
+/// height, the face's lowest and highest, make the face's outer boundary the whole band (the
+/// patch's domain), and are removed (`.1` is then true). `Err` when the loops fit no such
+/// turn, or go round otherwise.
+fn on_one_turn(loops: &mut Vec<ReadLoop>) -> Result<(usize, bool), String> {
+    let four = Rational::from(4);
+    let mut round = Vec::new();
+    for (k, (_, _, curves)) in loops.iter_mut().enumerate() {
+        let mut offset = Rational::from(0);
+        for i in 0..curves.len() {
+            if i > 0 {
+                let end = curves[i - 1].0.end();
+                let start = curves[i].0.start();
+                let jump = Rational::from(&end[0] - &start[0]) - &offset;
+                let dv = Rational::from(&start[1] - &end[1]).abs().to_f64();
+                let level = 1e-9 * (1.0 + end[1].to_f64().abs());
+                if dv <= level && jump.clone().abs() == four {
+                    offset += jump;
+                }
+            }
+            if offset != 0 {
+                curves[i].0 = shifted(&curves[i].0, &offset);
+            }
+        }
+        let (first, last) = match (curves.first(), curves.last()) {
+            (Some(f), Some(l)) => (f.0.start(), l.0.end()),
+            _ => continue,
+        };
+        let dv = Rational::from(&first[1] - &last[1]).abs().to_f64();
+        if Rational::from(&last[0] - &first[0]).abs() == four
+            && dv <= 1e-9 * (1.0 + first[1].to_f64().abs())
+        {
+            round.push(k);
+        }
+    }
+    let band = !round.is_empty();
+    if band {
+        let Some([lo, hi]) = heights(loops) else {
+            return Err("its loops have no points".into());
+        };
+        let at = |k: usize| -> Option<Rational> {
+            let mut vs = loops[k]
+                .2
+                .iter()
+                .flat_map(|(c, _)| c.points())
+                .map(|p| p[1].clone());
+            let v = vs.next()?;
+            vs.all(|w| w == v).then_some(v)
+        };
+        let ends = round.len() == 2
+            && matches!((at(round[0]), at(round[1])), (Some(a), Some(b))
+                if (a == lo && b == hi) || (a == hi && b == lo));
+        if !ends {
+            return Err(
+                "a loop goes round the cylinder other than as an end circle of a band".into(),
+            );
+        }
+        for k in round.into_iter().rev() {
+            loops.remove(k);
+        }
+    }
+    // A band keeps the turn [0, 4] (its end circles were cut at t = 0).
+    let turns: &[usize] = if band { &[0] } else { &[0, 1, 2, 3] };
+    'turn: for &m in turns {
+        let lo = Rational::from(m as u32);
+        let hi = Rational::from(m as u32 + 4);
+        let mut moves = Vec::with_capacity(loops.len());
+        for (_, _, curves) in loops.iter() {
+            let Some((a, b)) = t_range(curves) else {
+                moves.push(Rational::from(0));
+                continue;
+            };
+            let mut d = Rational::from(0);
+            while Rational::from(&a + &d) < lo {
+                d += 4;
+            }
+            while Rational::from(&a + &d) >= hi {
+                d -= 4;
+            }
+            if Rational::from(&b + &d) > hi {
+                continue 'turn;
+            }
+            moves.push(d);
+        }
+        for ((_, _, curves), d) in loops.iter_mut().zip(moves) {
+            if d != 0 {
+                for (c, _) in curves.iter_mut() {
+                    *c = shifted(c, &d);
+                }
+            }
+        }
+        return Ok((m, band));
+    }
+    Err("its loops fit no one turn of the cylinder starting at a quarter".into())
 }
 
 impl Reader<'_> {
@@ -335,10 +459,13 @@ impl Reader<'_> {
                     .entry(format!("face(s) used untrimmed: {why}"))
                     .or_default()
                     .push(id),
-                Err(Untrimmed::LeftOut(why)) => untrimmed
-                    .entry(format!("face(s) left out: {why}"))
-                    .or_default()
-                    .push(id),
+                Err(Untrimmed::LeftOut(why)) => {
+                    model.left_out += 1;
+                    untrimmed
+                        .entry(format!("face(s) left out: {why}"))
+                        .or_default()
+                        .push(id)
+                }
             }
         }
         if model.patches.is_empty() {
@@ -478,16 +605,19 @@ impl Reader<'_> {
             Ok(s) => s,
             Err(w) => return Ok(Err(Untrimmed::LeftOut(w))),
         };
-        let is_plane = matches!(surface, StepSurface::Plane(_));
+        // Planes and cylinders are unbounded: their patches are made from the face's loops.
+        let is_plane = matches!(surface, StepSurface::Plane(_) | StepSurface::Cylinder(_));
         let info = match &surface {
             StepSurface::Nurbs(n, closed) => {
                 Some(self.nurbs_patches(sid, n, *closed, model, surfaces)?)
             }
-            StepSurface::Plane(_) => None,
+            StepSurface::Plane(_) | StepSurface::Cylinder(_) => None,
         };
         if let Some(w) = why {
             return Ok(Err(if is_plane {
-                Untrimmed::LeftOut(format!("{w}; a plane is bounded by its loops only"))
+                Untrimmed::LeftOut(format!(
+                    "{w}; a plane or cylinder is bounded by its loops only"
+                ))
             } else {
                 Untrimmed::Whole(w)
             }));
@@ -566,25 +696,48 @@ impl Reader<'_> {
         }
         if loops.is_empty() {
             return Ok(Err(if is_plane {
-                Untrimmed::LeftOut("a plane without edge loops is unbounded".into())
+                Untrimmed::LeftOut("a plane or cylinder without edge loops is unbounded".into())
             } else {
                 Untrimmed::Whole("it has no edge loops".into())
             }));
         }
+        // A cylinder face's loops on one turn; a band's end circles are its domain's sides.
+        let mut cylinder = None;
+        let mut band = false;
+        if let StepSurface::Cylinder(_) = &surface {
+            let Some(heights) = heights(&loops) else {
+                return Ok(Err(Untrimmed::LeftOut("its loops have no points".into())));
+            };
+            match on_one_turn(&mut loops) {
+                Ok((m, b)) => {
+                    cylinder = Some((m, heights));
+                    band = b;
+                }
+                Err(w) => return Ok(Err(Untrimmed::LeftOut(w))),
+            }
+        }
         let info = match info {
             Some(i) => i,
-            None => match self.plane_patch(sid, &surface, &loops, model) {
-                Some(i) => i,
-                None => {
-                    return Ok(Err(Untrimmed::LeftOut(
-                        "its loops bound no area of the plane".into(),
-                    )))
+            None => {
+                let made = match (&surface, cylinder) {
+                    (StepSurface::Cylinder(c), Some((m, h))) => {
+                        self.cylinder_patches(sid, c, m, h, model)?
+                    }
+                    _ => self.plane_patch(sid, &surface, &loops, model),
+                };
+                match made {
+                    Some(i) => i,
+                    None => {
+                        return Ok(Err(Untrimmed::LeftOut(
+                            "its loops bound no area of the surface".into(),
+                        )))
+                    }
                 }
-            },
+            }
         };
         // How closely the pcurves follow the edges.
         let size = match &surface {
-            StepSurface::Nurbs(..) => {
+            StepSurface::Nurbs(..) | StepSurface::Cylinder(_) => {
                 let b = model
                     .patches
                     .iter()
@@ -622,14 +775,19 @@ impl Reader<'_> {
             }
         }
         // The outer loop: the one the file names, else the one whose box holds every other.
-        let outer_at = closed.iter().position(|(o, _)| *o).or_else(|| {
-            let boxes: Vec<[[f64; 2]; 2]> = closed.iter().map(|(_, l)| loop_box(l)).collect();
-            (0..boxes.len()).find(|&i| {
-                boxes
-                    .iter()
-                    .all(|b| (0..2).all(|k| boxes[i][k][0] <= b[k][0] && b[k][1] <= boxes[i][k][1]))
+        // (A band's outer boundary is its domain: every loop left is a hole.)
+        let outer_at = if band {
+            None
+        } else {
+            closed.iter().position(|(o, _)| *o).or_else(|| {
+                let boxes: Vec<[[f64; 2]; 2]> = closed.iter().map(|(_, l)| loop_box(l)).collect();
+                (0..boxes.len()).find(|&i| {
+                    boxes.iter().all(|b| {
+                        (0..2).all(|k| boxes[i][k][0] <= b[k][0] && b[k][1] <= boxes[i][k][1])
+                    })
+                })
             })
-        });
+        };
         let mut outer = None;
         let mut inner = Vec::new();
         for (k, (_, l)) in closed.into_iter().enumerate() {
@@ -843,8 +1001,14 @@ impl Reader<'_> {
                 "SURFACE_CURVE" | "SEAM_CURVE" | "BOUNDED_SURFACE_CURVE" | "INTERSECTION_CURVE"
             )
         {
-            if let Some(StepSurface::Plane(f)) = surface {
-                return self.projected_onto_plane(ec, geom, f, ends, same);
+            match surface {
+                Some(StepSurface::Plane(f)) => {
+                    return self.projected_onto_plane(ec, geom, f, ends, same)
+                }
+                Some(StepSurface::Cylinder(c)) => {
+                    return self.mapped_onto_cylinder(ec, geom, c, ends, same)
+                }
+                _ => {}
             }
             return Ok(Err(format!(
                 "edge #{ec} has no parameter-space curve (its geometry is a {}); inverting a model-space curve onto the surface is not built yet",
@@ -853,6 +1017,11 @@ impl Reader<'_> {
         }
         let a = inst.records[0].params.clone();
         let c3 = self.reference(geom, self.attr(geom, &a, 1, "curve_3d")?, "curve_3d")?;
+        // A cylinder's pcurves are in its angle, which no rational map takes to limn's
+        // parameter: the model-space curve is mapped instead.
+        if let Some(StepSurface::Cylinder(c)) = surface {
+            return self.mapped_onto_cylinder(ec, c3, c, ends, same);
+        }
         let assoc = self
             .list(
                 geom,
@@ -916,9 +1085,13 @@ impl Reader<'_> {
         };
         let mut out = Vec::with_capacity(pcurves.len());
         for pc in pcurves {
-            let c = match self.curve(ec, pc, 2)? {
-                Ok(c) => c,
-                Err(w) => return Ok(Err(w)),
+            let c = match (self.curve(ec, pc, 2)?, surface) {
+                (Ok(c), _) => c,
+                // On a plane the model-space curve serves instead.
+                (Err(_), Some(StepSurface::Plane(f))) => {
+                    return self.projected_onto_plane(ec, c3, f, ends, same)
+                }
+                (Err(w), _) => return Ok(Err(w)),
             };
             // The edge's range on the pcurve: candidates, the one whose ends lie nearest the
             // vertices on the surface taken (a file may parameterise the pcurve unlike the
@@ -955,7 +1128,7 @@ impl Reader<'_> {
             }
             let score = |r: &(Rational, Rational)| -> f64 {
                 let Some(surface) = surface else { return 0.0 };
-                match (curve_point(&c, &r.0), curve_point(&c, &r.1)) {
+                match (c.point(&r.0), c.point(&r.1)) {
                     (Some(a), Some(b)) => distance(&surface_point(surface, &a[0], &a[1]), s)
                         .max(distance(&surface_point(surface, &b[0], &b[1]), t)),
                     _ => f64::INFINITY,
@@ -1026,6 +1199,142 @@ impl Reader<'_> {
             }
         }
         Ok(Ok(out))
+    }
+
+    /// The patches of a cylinder over the heights its face's loops reach (`t` over the whole
+    /// circle, closed in `t`): each face on a cylinder has its own patches.
+    fn cylinder_patches(
+        &mut self,
+        sid: u64,
+        c: &Cylinder,
+        m: usize,
+        [lo, hi]: [Rational; 2],
+        model: &mut Model,
+    ) -> Result<Option<SurfaceInfo>, ReadError> {
+        if lo >= hi {
+            return Ok(None);
+        }
+        let Some(n) = c.surface(m, &lo, &hi) else {
+            return Err(self.err(sid, "the cylinder's surface could not be made"));
+        };
+        let mut own = BTreeMap::new();
+        let info = self.nurbs_patches(sid, &n, [true, false], model, &mut own)?;
+        Ok(Some(info))
+    }
+
+    /// An edge on a cylinder face, from its model-space curve: a line along the axis is the
+    /// segment `t = t₀` between its vertices' heights (on the seam `t₀ = 0`, also `t₀ = 4`:
+    /// two candidates); a circle about the axis of the cylinder's radius is the segment
+    /// `v = v₀` between its vertices' parameters, split at the seam when it crosses it
+    /// (`proofs/trimmed-faces.md` 9, claim 4). Other curves, and curves off the cylinder by more
+    /// than [`VERTEX_GAP`] of the part's size, are not mapped (the reason is returned).
+    fn mapped_onto_cylinder(
+        &mut self,
+        ec: u64,
+        id: u64,
+        cyl: &Cylinder,
+        ends: &[Point3; 2],
+        same: bool,
+    ) -> Result<Result<Vec<Vec<ParameterCurve>>, String>, ReadError> {
+        let (c, conic) = match self.model_curve(ec, id)? {
+            Ok(c) => c,
+            Err(w) => return Ok(Err(format!("edge #{ec} on a cylinder: {w}"))),
+        };
+        let (s, t) = if same {
+            (&ends[0], &ends[1])
+        } else {
+            (&ends[1], &ends[0])
+        };
+        let size = scale(s.iter().chain(t.iter())).to_f64();
+        let near = |d: Rational| d.abs().to_f64() <= VERTEX_GAP * size;
+        let (a, b) = (cyl.parameters(s), cyl.parameters(t));
+        let point = |x: &Rational, y: &Rational| vec![x.clone(), y.clone()];
+        let segment = |p: &[Rational], q: &[Rational]| ParameterCurve::segment(p, q);
+        let zero = Rational::from(0);
+        let four = Rational::from(4);
+        match (&c, &conic) {
+            (Curve::Line { d, .. }, None) => {
+                // Along the axis: the direction has no part across it.
+                let along = dot(d, &cyl.z);
+                let across: Vec<Rational> =
+                    (0..3).map(|k| &d[k] - Rational::from(&along * &cyl.z[k])).collect();
+                let dn = d.iter().map(|x| x.clone().abs()).max().unwrap_or_default();
+                let slack = dn * Rational::from((1, 1_000_000_000));
+                if !across.iter().all(|x| x.clone().abs() <= slack) {
+                    return Ok(Err(format!(
+                        "edge #{ec} on a cylinder: its line #{id} is not along the axis"
+                    )));
+                }
+                // The segment's end against the end vertex (its start is checked with the
+                // loop's other vertices).
+                let far = distance(&surface_point_of(cyl, &a[0], &b[1]), t);
+                if far > VERTEX_GAP * size || a[1] == b[1] {
+                    return Ok(Err(format!(
+                        "edge #{ec} on a cylinder: its line #{id} is not a ruling through its vertices"
+                    )));
+                }
+                let p = point(&a[0], &a[1]);
+                let q = point(&a[0], &b[1]);
+                let mut out = vec![vec![segment(&p, &q)]];
+                if a[0] == zero {
+                    out.push(vec![segment(&point(&four, &a[1]), &point(&four, &b[1]))]);
+                }
+                Ok(Ok(out))
+            }
+            (_, Some(k)) => {
+                // About the axis, of the cylinder's radius, in a plane across it.
+                let n = cross3(&k.x, &k.y);
+                let dz = dot(&n, &cyl.z);
+                let off: Vec<Rational> = (0..3).map(|i| &n[i] - Rational::from(&dz * &cyl.z[i])).collect();
+                let centre: Vec<Rational> =
+                    (0..3).map(|i| Rational::from(&k.c[i] - &cyl.circle.c[i])).collect();
+                let h = dot(&centre, &cyl.z);
+                let centre_off: Vec<Rational> =
+                    (0..3).map(|i| &centre[i] - Rational::from(&h * &cyl.z[i])).collect();
+                let round = k.radii[0] == k.radii[1];
+                if !round
+                    || !off.iter().all(|x| near(x.clone() * cyl.radius()))
+                    || !centre_off.iter().all(|x| near(x.clone()))
+                    || !near(Rational::from(&k.radii[0] - cyl.radius()))
+                {
+                    return Ok(Err(format!(
+                        "edge #{ec} on a cylinder: its curve #{id} is not a circle about the cylinder's axis"
+                    )));
+                }
+                // The edge's direction about the axis: the circle's, against it when the
+                // circle's normal points down the axis, and reversed once more when a trimmed
+                // curve runs against its circle.
+                let counter = (dz > 0) != k.reversed;
+                let (ta, tb) = (a[0].clone(), b[0].clone());
+                let at = |x: &Rational| point(x, &h);
+                let mut pieces = Vec::new();
+                if counter {
+                    if ta < tb {
+                        pieces.push(segment(&at(&ta), &at(&tb)));
+                    } else {
+                        if ta < four {
+                            pieces.push(segment(&at(&ta), &at(&four)));
+                        }
+                        if zero < tb {
+                            pieces.push(segment(&at(&zero), &at(&tb)));
+                        }
+                    }
+                } else if tb < ta {
+                    pieces.push(segment(&at(&ta), &at(&tb)));
+                } else {
+                    if zero < ta {
+                        pieces.push(segment(&at(&ta), &at(&zero)));
+                    }
+                    if tb < four {
+                        pieces.push(segment(&at(&four), &at(&tb)));
+                    }
+                }
+                Ok(Ok(vec![pieces]))
+            }
+            _ => Ok(Err(format!(
+                "edge #{ec} on a cylinder: its curve #{id} is neither a ruling nor a circle about the axis; inverting other curves onto a cylinder is not built yet"
+            ))),
+        }
     }
 
     /// An edge without a pcurve on a plane face: its model-space curve `id` mapped into the

@@ -7,7 +7,7 @@ use super::part21::Param;
 use super::Reader;
 use crate::io::ReadError;
 use crate::number::Rational;
-use crate::surface::{NurbsError, NurbsSurface, Point3};
+use crate::surface::{NurbsCurve, NurbsError, NurbsSurface, Point3};
 
 /// A curve of an edge or a trim, in any dimension.
 #[derive(Clone, Debug)]
@@ -34,6 +34,39 @@ impl Curve {
                 ..
             } => Some([knots[*degree].clone(), knots[points.len()].clone()]),
             Curve::Line { .. } => None,
+        }
+    }
+
+    /// The point at `t`, exact, in the curve's dimension (2 or 3; `None` outside a B-spline
+    /// curve's domain).
+    pub(super) fn point(&self, t: &Rational) -> Option<Vec<Rational>> {
+        match self {
+            Curve::Line { p, d } => Some(
+                p.iter()
+                    .zip(d)
+                    .map(|(x, y)| x + Rational::from(t * y))
+                    .collect(),
+            ),
+            Curve::Nurbs {
+                degree,
+                knots,
+                points,
+                weights,
+            } => {
+                let d = self.domain()?;
+                if *t < d[0] || *t > d[1] {
+                    return None;
+                }
+                if points.first()?.len() == 3 {
+                    let n =
+                        NurbsCurve::<4>::new(*degree, knots.clone(), points, weights, None).ok()?;
+                    Some(n.eval(t))
+                } else {
+                    let n =
+                        NurbsCurve::<3>::new(*degree, knots.clone(), points, weights, None).ok()?;
+                    Some(n.eval(t))
+                }
+            }
         }
     }
 
@@ -139,19 +172,87 @@ pub(super) enum StepSurface {
     Nurbs(Box<NurbsSurface>, [bool; 2]),
     /// A plane.
     Plane(Box<PlaneFrame>),
+    /// A circular cylinder (its patch made per face, over the heights its loops reach).
+    Cylinder(Box<Cylinder>),
+}
+
+/// The cylinder `c + r cos θ x + r sin θ y + v z`, parameterised by `(t, v)`: `t ∈ [0, 4]` the
+/// parameter of its base circle as a [`Conic`] (the seam `t = 0` on the placement's `x` axis),
+/// `v` the height along `z = x × y`.
+#[derive(Clone, Debug)]
+pub(super) struct Cylinder {
+    pub(super) circle: Conic,
+    pub(super) z: Point3,
+}
+
+impl Cylinder {
+    /// The point at `(t, v)`, exact (`t` taken modulo 4).
+    pub(super) fn point(&self, t: &Rational, v: &Rational) -> Option<Point3> {
+        let mut t = t.clone();
+        while t < 0 {
+            t += 4;
+        }
+        while t > 4 {
+            t -= 4;
+        }
+        let p = self.circle.curve().point(&t)?;
+        Some([0, 1, 2].map(|k| &p[k] + Rational::from(v * &self.z[k])))
+    }
+
+    /// The parameters `(t, v)` of a point: its height along the axis, and the circle's
+    /// parameter of its direction from the axis ([`Conic::parameter`]; `x`, `y` are
+    /// perpendicular to `z`, so the height does not enter it).
+    pub(super) fn parameters(&self, p: &[Rational]) -> [Rational; 2] {
+        let d: Vec<Rational> = p
+            .iter()
+            .zip(&self.circle.c)
+            .map(|(a, b)| Rational::from(a - b))
+            .collect();
+        [self.circle.parameter(p), dot(&d, &self.z)]
+    }
+
+    /// The radius.
+    pub(super) fn radius(&self) -> &Rational {
+        &self.circle.radii[0]
+    }
+
+    /// The cylinder over `t ∈ [m, m + 4]` and heights `[v0, v1]` as an exact rational B-spline
+    /// surface of degree (2, 1): the circle's B-spline ([`Conic::curve_from`]) swept along `z`,
+    /// closed in `t`.
+    pub(super) fn surface(&self, m: usize, v0: &Rational, v1: &Rational) -> Option<NurbsSurface> {
+        let Curve::Nurbs {
+            knots,
+            points,
+            weights,
+            ..
+        } = self.circle.curve_from(m)
+        else {
+            return None;
+        };
+        let mut net = Vec::with_capacity(2 * points.len());
+        let mut w = Vec::with_capacity(2 * points.len());
+        for (p, wi) in points.iter().zip(&weights) {
+            for v in [v0, v1] {
+                net.push([0, 1, 2].map(|k| &p[k] + Rational::from(v * &self.z[k])));
+                w.push(wi.clone());
+            }
+        }
+        let kv = vec![v0.clone(), v0.clone(), v1.clone(), v1.clone()];
+        NurbsSurface::new([2, 1], knots, kv, [points.len(), 2], net, w).ok()
+    }
 }
 
 /// A circle or an ellipse `c + a cos θ x + b sin θ y` (`x`, `y` its placement's unit axes),
 /// for edges mapped into a plane.
 #[derive(Clone, Debug)]
 pub(super) struct Conic {
-    c: Point3,
-    x: Point3,
-    y: Point3,
+    pub(super) c: Point3,
+    pub(super) x: Point3,
+    pub(super) y: Point3,
     /// The semi-axes `a` along `x` and `b` along `y` (equal on a circle).
-    radii: [Rational; 2],
+    pub(super) radii: [Rational; 2],
     /// Run the other way (a trimmed curve against its sense): the parameter negated.
-    reversed: bool,
+    pub(super) reversed: bool,
 }
 
 impl Conic {
@@ -161,11 +262,18 @@ impl Conic {
     /// points `e_k`, `e_k + e_{k+1}`, `e_{k+1}` with weights `1, 1, 2`, scaled by `2^k` so that
     /// the quarters join), run backwards when `reversed`.
     pub(super) fn curve(&self) -> Curve {
+        self.curve_from(0)
+    }
+
+    /// [`Conic::curve`] on `[m, m + 4]` (`m` a whole quarter): the same point at `t` as at
+    /// `t − 4` (the quarters repeat; `m` not reversed).
+    pub(super) fn curve_from(&self, m: usize) -> Curve {
         let [a, b] = &self.radii;
         let ax: Vec<Rational> = self.x.iter().map(|v| Rational::from(v * a)).collect();
         let by: Vec<Rational> = self.y.iter().map(|v| Rational::from(v * b)).collect();
         let neg = |v: &[Rational]| v.iter().map(|c| -c.clone()).collect::<Vec<_>>();
-        let e = [ax.clone(), by.clone(), neg(&ax), neg(&by), ax];
+        let quarter = [ax.clone(), by.clone(), neg(&ax), neg(&by)];
+        let e: Vec<Vec<Rational>> = (0..5).map(|k| quarter[(m + k) % 4].clone()).collect();
         let at = |d: &[Rational]| -> Vec<Rational> {
             self.c.iter().zip(d).map(|(c, d)| c + d.clone()).collect()
         };
@@ -186,7 +294,7 @@ impl Conic {
         points.push(at(&e[4]));
         weights.push(Rational::from(16));
         let knots = [0, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 4]
-            .map(Rational::from)
+            .map(|k| Rational::from(k + m as u32))
             .to_vec();
         let c = Curve::Nurbs {
             degree: 2,
@@ -204,8 +312,9 @@ impl Conic {
     /// The parameter of [`Conic::curve`] at the point of the conic nearest `p` in the sense
     /// of the stereographic map (exact for a point on the conic; for a point off it, the
     /// conic's point on the ray from the centre, up to the quarter's parameterisation): the
-    /// quarter `k` whose right angle holds `p`'s direction, and `s = Y'/(1 + X')` there,
-    /// `(X', Y')` the point's coordinates on the unit circle's scale rotated back by `k`.
+    /// quarter `k` whose right angle holds `p`'s direction, and `s = Y'/(1 + X')` there (at
+    /// most 1, and taken as 0 or 1 within 2^-40 of them), `(X', Y')` the point's coordinates on
+    /// the unit circle's scale rotated back by `k`; in `[0, 4)`.
     pub(super) fn parameter(&self, p: &[Rational]) -> Rational {
         let d: Vec<Rational> = p
             .iter()
@@ -225,7 +334,23 @@ impl Conic {
             .enumerate()
             .find(|(_, (a, b))| *a > 0 && *b >= 0)
             .unwrap_or((0, (Rational::from(0), Rational::from(0))));
-        let t = Rational::from(k as u32) + yr / (xr + Rational::from(1));
+        // Off the conic `s` may pass 1 (a point just outside it near the quarter's end): the
+        // quarter's end is then the nearer parameter.
+        // Within 2^-40 of a quarter's end (a vertex written a rounding away from the seam or
+        // an axis), the end: the vertex check of its face judges the difference.
+        let s = (yr / (xr + Rational::from(1))).min(Rational::from(1));
+        let eps = Rational::from((1, 1u64 << 40));
+        let s = if s < eps {
+            Rational::from(0)
+        } else if Rational::from(1 - &s) < eps {
+            Rational::from(1)
+        } else {
+            s
+        };
+        let mut t = Rational::from(k as u32) + s;
+        if t == 4 {
+            t = Rational::from(0);
+        }
         if self.reversed {
             -t
         } else {
@@ -254,6 +379,14 @@ pub(super) struct PlaneFrame {
 /// `a · b`, exact.
 pub(super) fn dot(a: &[Rational], b: &[Rational]) -> Rational {
     a.iter().zip(b).map(|(x, y)| Rational::from(x * y)).sum()
+}
+
+/// `a × b` of points given as slices, exact.
+pub(super) fn cross3(a: &[Rational], b: &[Rational]) -> [Rational; 3] {
+    cross(
+        &[a[0].clone(), a[1].clone(), a[2].clone()],
+        &[b[0].clone(), b[1].clone(), b[2].clone()],
+    )
 }
 
 /// `a × b`, exact.
@@ -765,6 +898,26 @@ impl Reader<'_> {
                 let pl = self.reference(id, self.attr(id, a, 1, "position")?, "position")?;
                 let (o, x, y, _) = self.placement(id, pl)?;
                 Ok(Ok(StepSurface::Plane(Box::new(PlaneFrame { o, x, y }))))
+            }
+            (false, "CYLINDRICAL_SURFACE") => {
+                let a = &inst.records[0].params;
+                let pl = self.reference(id, self.attr(id, a, 1, "position")?, "position")?;
+                let (c, x, y, _) = self.placement(id, pl)?;
+                let r = self.real(id, self.attr(id, a, 2, "radius")?, "radius")?;
+                if r <= 0 {
+                    return Err(self.err(id, format!("the radius {r} is not positive")));
+                }
+                let z = cross(&x, &y);
+                Ok(Ok(StepSurface::Cylinder(Box::new(Cylinder {
+                    circle: Conic {
+                        c,
+                        x,
+                        y,
+                        radii: [r.clone(), r],
+                        reversed: false,
+                    },
+                    z,
+                }))))
             }
             _ if inst
                 .records

@@ -1,20 +1,24 @@
 //! STEP (ISO 10303-21 files of AP203, AP214 and AP242 geometry): the faces of B-reps and
 //! surface models as trimmed faces with exact loops.
 //!
-//! Read: `ADVANCED_FACE` (and `FACE_SURFACE`) on `B_SPLINE_SURFACE_WITH_KNOTS`, rational or not,
-//! and on `PLANE`; their bounds `FACE_OUTER_BOUND` / `FACE_BOUND` of `EDGE_LOOP`s of
-//! `ORIENTED_EDGE`s of `EDGE_CURVE`s, each trimmed by its `PCURVE` on the face's surface
-//! (`SURFACE_CURVE`, `SEAM_CURVE`): a B-spline curve or a line in the surface's parameter plane,
-//! on the edge's range: of the candidates (the parameters of its vertices on its model-space
-//! curve, which Part 42 has the pcurve share; the pcurve's own ends; on a plane, the vertices'
-//! exact feet), the one whose ends land nearest the vertices on the surface, or, when none
-//! lands near, the pcurve parameters nearest the vertices (an f64 search, snapped to the
-//! pcurve's ends). The choice only interprets the file: the loop is the exact pcurve on it.
+//! Read: `ADVANCED_FACE` (and `FACE_SURFACE`) on `B_SPLINE_SURFACE_WITH_KNOTS` (rational or
+//! not), on `PLANE` and on `CYLINDRICAL_SURFACE`; their bounds `FACE_OUTER_BOUND` /
+//! `FACE_BOUND` of `EDGE_LOOP`s of `ORIENTED_EDGE`s of `EDGE_CURVE`s. On a B-spline surface
+//! each edge is trimmed by its `PCURVE` (`SURFACE_CURVE`, `SEAM_CURVE`): a B-spline curve or a
+//! line in the surface's parameter plane, on the edge's range: of the candidates (the
+//! parameters of its vertices on its model-space curve, which Part 42 has the pcurve share; the
+//! pcurve's own ends), the one whose ends land nearest the vertices on the surface, or, when
+//! none lands near, the pcurve parameters nearest the vertices (an f64 search, snapped to the
+//! pcurve's ends). The choice only interprets the file: the loop is the exact pcurve on it. On
+//! a plane, the pcurve (ranged by the vertices' exact feet) or, without one, the model-space
+//! curve mapped exactly into the plane's frame; on a cylinder, the model-space rulings and
+//! circles mapped exactly onto its rational parameterisation (`proofs/trimmed-faces.md` 9).
 //! The topology (shared edges, shells) is read from the B-rep. Every number is the exact
-//! rational its decimal denotes; a plane's axes are the file's directions (normalised to
+//! rational its decimal denotes; placements' axes are the file's directions (normalised to
 //! within 2^-50 where they are not of unit length exactly). Faces on other surfaces (the
-//! elementary cylinder, cone, sphere and torus, swept and offset surfaces), or with edges
-//! limn cannot place on the surface, are left out or used untrimmed with the reason.
+//! elementary cone, sphere and torus, swept and offset surfaces), or with edges limn cannot
+//! place on the surface, are left out (counted in `Model::left_out`) or used untrimmed, with
+//! the reason.
 //!
 //! Errors name the instance: `file.stp: #123 (EDGE_LOOP): ...`; syntax errors the line.
 
