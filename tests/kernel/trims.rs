@@ -566,3 +566,38 @@ fn step_cylinder_faces_map_rulings_and_circles_onto_the_exact_cylinder() {
     assert_eq!(m.faces[0].domain[0], [Rational::from(1), Rational::from(5)]);
     on_cylinder(&m);
 }
+
+/// A quasi-uniform B-spline surface (knots implied: the ends `p + 1` times, the integers
+/// between once) reads as the same surface with those knots written out.
+#[test]
+fn step_quasi_uniform_surfaces_have_their_implied_knots() {
+    let file = |surface: &str| {
+        let mut s = String::from("ISO-10303-21;\nHEADER;\nENDSEC;\nDATA;\n");
+        for i in 0..4 {
+            for j in 0..2 {
+                s.push_str(&format!(
+                    "#{} = CARTESIAN_POINT('',({i}.,{j}.,{}.));\n",
+                    10 + 2 * i + j,
+                    (i * i + j) % 3
+                ));
+            }
+        }
+        s.push_str(&format!(
+            "#5 = {surface};\n#6 = ADVANCED_FACE('',(),#5,.T.);\nENDSEC;\nEND-ISO-10303-21;\n"
+        ));
+        s
+    };
+    let net = "((#10,#11),(#12,#13),(#14,#15),(#16,#17))";
+    let quasi = file(&format!(
+        "QUASI_UNIFORM_SURFACE('',2,1,{net},.UNSPECIFIED.,.F.,.F.,.F.)"
+    ));
+    let knots = file(&format!(
+        "B_SPLINE_SURFACE_WITH_KNOTS('',2,1,{net},.UNSPECIFIED.,.F.,.F.,.F.,(3,1,3),(2,2),(0.,1.,2.),(0.,1.),.UNSPECIFIED.)"
+    ));
+    let a = limn::io::read_model_bytes("quasi.stp", quasi.as_bytes(), None).unwrap();
+    let b = limn::io::read_model_bytes("knots.stp", knots.as_bytes(), None).unwrap();
+    assert_eq!(a.patches.len(), 2);
+    for (p, q) in a.patches.iter().zip(&b.patches) {
+        assert_eq!(p.surface, q.surface);
+    }
+}

@@ -381,6 +381,17 @@ pub(super) fn dot(a: &[Rational], b: &[Rational]) -> Rational {
     a.iter().zip(b).map(|(x, y)| Rational::from(x * y)).sum()
 }
 
+/// The knots Part 42 implies for a quasi-uniform B-spline of `n` control points and degree `p`:
+/// `0` and `n − p` each `p + 1` times, the integers between once (too few points give a
+/// vector the B-spline's own checks refuse).
+fn quasi_uniform(n: usize, p: usize) -> Vec<Rational> {
+    let spans = n.saturating_sub(p).max(1) as u64;
+    let mut k = vec![Rational::from(0); p + 1];
+    k.extend((1..spans).map(Rational::from));
+    k.extend(std::iter::repeat_n(Rational::from(spans), p + 1));
+    k
+}
+
 /// `a × b` of points given as slices, exact.
 pub(super) fn cross3(a: &[Rational], b: &[Rational]) -> [Rational; 3] {
     cross(
@@ -623,10 +634,13 @@ impl Reader<'_> {
         dim: usize,
     ) -> Result<Result<Curve, String>, ReadError> {
         let inst = self.instance(from, id, "curve")?;
-        if let Some(b) = inst.record("B_SPLINE_CURVE_WITH_KNOTS") {
+        let knotted = inst.record("B_SPLINE_CURVE_WITH_KNOTS");
+        let quasi = inst.record("QUASI_UNIFORM_CURVE");
+        if knotted.is_some() || quasi.is_some() {
             // Simple: (name, degree, points, form, closed, self_intersect, mults, knots, spec);
             // complex: B_SPLINE_CURVE(degree, points, form, closed, self_intersect) with
             // B_SPLINE_CURVE_WITH_KNOTS(mults, knots, spec) and RATIONAL_B_SPLINE_CURVE(weights).
+            // A QUASI_UNIFORM_CURVE has no knots: they are implied.
             let (head, knots) = if inst.complex {
                 let Some(h) = inst.record("B_SPLINE_CURVE") else {
                     return Err(self.err(
@@ -634,13 +648,20 @@ impl Reader<'_> {
                         "a complex B-spline curve without its B_SPLINE_CURVE part",
                     ));
                 };
-                (&h.params[..], &b.params[..])
+                (&h.params[..], knotted.map(|b| &b.params[..]))
             } else {
+                let (b, needed) = match knotted {
+                    Some(b) => (b, 9),
+                    None => (quasi.unwrap_or(&inst.records[0]), 6),
+                };
                 let p = &b.params[..];
-                if p.len() < 9 {
-                    return Err(self.err(id, format!("{} attributes where 9 are needed", p.len())));
+                if p.len() < needed {
+                    return Err(self.err(
+                        id,
+                        format!("{} attributes where {needed} are needed", p.len()),
+                    ));
                 }
-                (&p[1..6], &p[6..9])
+                (&p[1..6], knotted.map(|_| &p[6..9]))
             };
             let degree = self.count(id, self.attr(id, head, 0, "degree")?, "degree", 1_000)?;
             let cps = self.list(
@@ -652,7 +673,10 @@ impl Reader<'_> {
                 .iter()
                 .map(|p| self.point(id, self.reference(id, p, "control point")?, dim))
                 .collect::<Result<_, _>>()?;
-            let knots = self.knots(id, knots, (0, 1), points.len() + degree + 1)?;
+            let knots = match knots {
+                Some(knots) => self.knots(id, knots, (0, 1), points.len() + degree + 1)?,
+                None => quasi_uniform(points.len(), degree),
+            };
             let weights = match inst.record("RATIONAL_B_SPLINE_CURVE") {
                 None => vec![Rational::from(1); points.len()],
                 Some(r) => {
@@ -794,7 +818,10 @@ impl Reader<'_> {
         id: u64,
     ) -> Result<Result<StepSurface, String>, ReadError> {
         let inst = self.instance(from, id, "surface")?;
-        if let Some(b) = inst.record("B_SPLINE_SURFACE_WITH_KNOTS") {
+        let knotted = inst.record("B_SPLINE_SURFACE_WITH_KNOTS");
+        let quasi = inst.record("QUASI_UNIFORM_SURFACE");
+        if knotted.is_some() || quasi.is_some() {
+            // Knots as listed, or implied by a quasi-uniform surface (`None`).
             let (head, knots) = if inst.complex {
                 let Some(h) = inst.record("B_SPLINE_SURFACE") else {
                     return Err(self.err(
@@ -802,13 +829,20 @@ impl Reader<'_> {
                         "a complex B-spline surface without its B_SPLINE_SURFACE part",
                     ));
                 };
-                (&h.params[..], &b.params[..])
+                (&h.params[..], knotted.map(|b| &b.params[..]))
             } else {
+                let (b, needed) = match knotted {
+                    Some(b) => (b, 13),
+                    None => (quasi.unwrap_or(&inst.records[0]), 8),
+                };
                 let p = &b.params[..];
-                if p.len() < 13 {
-                    return Err(self.err(id, format!("{} attributes where 13 are needed", p.len())));
+                if p.len() < needed {
+                    return Err(self.err(
+                        id,
+                        format!("{} attributes where {needed} are needed", p.len()),
+                    ));
                 }
-                (&p[1..8], &p[8..13])
+                (&p[1..8], knotted.map(|_| &p[8..13]))
             };
             let deg = [
                 self.count(id, self.attr(id, head, 0, "u_degree")?, "u_degree", 1_000)?,
@@ -845,8 +879,13 @@ impl Reader<'_> {
                 }
             }
             let closed = [3, 4].map(|k| matches!(head.get(k), Some(Param::Enum(e)) if e == "T"));
-            let ku = self.knots(id, knots, (0, 2), nu + deg[0] + 1)?;
-            let kv = self.knots(id, knots, (1, 3), nv + deg[1] + 1)?;
+            let (ku, kv) = match knots {
+                Some(knots) => (
+                    self.knots(id, knots, (0, 2), nu + deg[0] + 1)?,
+                    self.knots(id, knots, (1, 3), nv + deg[1] + 1)?,
+                ),
+                None => (quasi_uniform(nu, deg[0]), quasi_uniform(nv, deg[1])),
+            };
             let weights: Vec<Rational> = match inst.record("RATIONAL_B_SPLINE_SURFACE") {
                 None => vec![Rational::from(1); nu * nv],
                 Some(r) => {
