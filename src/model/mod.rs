@@ -118,6 +118,9 @@ pub struct Model {
     /// limn does not read yet; each named in `warnings`): analyses that depend on the whole
     /// part (hidden lines, visible regions) state it among their assumptions.
     pub left_out: usize,
+    /// Placements of parts the file states (a STEP assembly's transformations) that limn does
+    /// not apply: each part is in its own coordinates. Stated like `left_out`.
+    pub placements_ignored: usize,
 }
 
 impl Model {
@@ -146,17 +149,27 @@ impl Model {
             faces: Vec::new(),
             brep: None,
             left_out: 0,
+            placements_ignored: 0,
         }
     }
 
-    /// The assumption of an analysis of the whole part when the reader left some of it out.
-    pub fn left_out_assumption(&self) -> Option<String> {
-        (self.left_out > 0).then(|| {
-            format!(
+    /// The assumptions of an analysis of the whole part when the reader left some of it out or
+    /// did not place its parts.
+    pub fn reader_assumptions(&self) -> Vec<String> {
+        let mut out = Vec::new();
+        if self.left_out > 0 {
+            out.push(format!(
                 "the part is what limn read of the file: {} of its surfaces or faces are left out (named in the reader's warnings, `limn info`), and what they would hide or show is not drawn",
                 self.left_out
-            )
-        })
+            ));
+        }
+        if self.placements_ignored > 0 {
+            out.push(format!(
+                "the file is an assembly whose {} placements of parts limn does not apply: each part is in its own coordinates, as read",
+                self.placements_ignored
+            ));
+        }
+        out
     }
 
     /// The axis-aligned bounding box of all control points and mesh vertices (it contains

@@ -110,13 +110,20 @@ impl Document for WithResult<'_, HlrReport, HiddenLines> {
     report_parts!();
     fn svg(&self, model: &Model, view: &View) -> Option<String> {
         let r = &self.report;
-        let left_out = if model.left_out > 0 {
-            format!(
-                " ({} surfaces or faces of the file left out)",
+        let mut caveats = Vec::new();
+        if model.left_out > 0 {
+            caveats.push(format!(
+                "{} surfaces or faces of the file left out",
                 model.left_out
-            )
-        } else {
+            ));
+        }
+        if model.placements_ignored > 0 {
+            caveats.push("an assembly, parts not placed".to_string());
+        }
+        let left_out = if caveats.is_empty() {
             String::new()
+        } else {
+            format!(" ({})", caveats.join("; "))
         };
         let title = format!(
             "{}{left_out}: hidden lines, {} pieces, {}",

@@ -261,7 +261,8 @@ fn a_step_box_draws_nine_visible_edges_and_three_hidden() {
 }
 
 /// A drawing of a part the reader left a face out of says so among its assumptions (the box
-/// with one face on a surface limn does not read: five faces drawn, the sixth named).
+/// with one face on a surface limn does not read: five faces drawn, the sixth named); so does
+/// one of an assembly whose placements are not applied.
 #[test]
 fn a_drawing_with_faces_left_out_states_it() {
     let path = format!(
@@ -287,5 +288,28 @@ fn a_drawing_with_faces_left_out_states_it() {
     )))
     .unwrap();
     let h = hidden_lines(&whole, &View::direction([1, 2, 3]), &HlrOptions::default()).unwrap();
-    assert!(!h.assumptions.iter().any(|a| a.contains("left out")));
+    assert!(!h
+        .assumptions
+        .iter()
+        .any(|a| a.contains("left out") || a.contains("assembly")));
+    // An assembly's placement (a complex instance, as writers give it), not applied: said.
+    let text = std::fs::read_to_string(format!(
+        "{}/fixtures/step/occt-written/box.stp",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .unwrap()
+    .replace(
+        "ENDSEC;\nEND-ISO-10303-21;",
+        "#9000 = ( REPRESENTATION_RELATIONSHIP('','',#10,#10) REPRESENTATION_RELATIONSHIP_WITH_TRANSFORMATION(#9001) SHAPE_REPRESENTATION_RELATIONSHIP() );\nENDSEC;\nEND-ISO-10303-21;",
+    );
+    let model = limn::io::read_model_bytes("assembly.stp", text.as_bytes(), None).unwrap();
+    assert_eq!(model.placements_ignored, 1);
+    let h = hidden_lines(&model, &View::direction([1, 2, 3]), &HlrOptions::default()).unwrap();
+    assert!(
+        h.assumptions
+            .iter()
+            .any(|a| a.contains("an assembly whose 1 placements")),
+        "{:?}",
+        h.assumptions
+    );
 }

@@ -448,6 +448,29 @@ impl Reader<'_> {
             ));
         }
         let mut model = Model::from_patches(Format::Step, Vec::new());
+        // An assembly's placements of its parts (not applied).
+        model.placements_ignored = self
+            .ex
+            .instances
+            .values()
+            .filter(|i| {
+                i.records.iter().any(|r| {
+                    matches!(
+                        r.name.as_str(),
+                        "REPRESENTATION_RELATIONSHIP_WITH_TRANSFORMATION" | "MAPPED_ITEM"
+                    )
+                })
+            })
+            .count();
+        if model.placements_ignored > 0 {
+            self.warnings.push(Warning {
+                place: "file".into(),
+                message: format!(
+                    "an assembly: {} placements of parts are not applied yet (each part is read in its own coordinates)",
+                    model.placements_ignored
+                ),
+            });
+        }
         let mut surfaces: BTreeMap<u64, (SurfaceInfo, StepSurface)> = BTreeMap::new();
         let mut topo = Topology::default();
         let mut untrimmed: BTreeMap<String, Vec<u64>> = BTreeMap::new();

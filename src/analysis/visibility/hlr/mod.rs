@@ -241,7 +241,7 @@ fn drawing(model: &Model, view: &View, opts: &HlrOptions) -> Result<HiddenLines,
     if scene.faces.iter().any(Option::is_some) {
         assumptions.push(trim_assumption(scene.trim_contact));
     }
-    assumptions.extend(model.left_out_assumption());
+    assumptions.extend(model.reader_assumptions());
     Ok(HiddenLines {
         pieces,
         facing: facing_types,

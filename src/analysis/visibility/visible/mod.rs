@@ -354,7 +354,7 @@ fn regions(model: &Model, view: &View, opts: &VisibleOptions) -> Result<VisibleR
     if let WeldTolerance::Absolute(d) = weld {
         assumptions.push(crate::analysis::visibility::hlr::weld_assumption(d));
     }
-    assumptions.extend(model.left_out_assumption());
+    assumptions.extend(model.reader_assumptions());
     let mut missing_occlusions = Vec::new();
     let mut intersecting_patches = Vec::new();
     if opts.trimming {
