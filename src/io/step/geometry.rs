@@ -3,7 +3,7 @@
 //! of faces (B-spline surfaces with knots, rational or not, and planes). Other entity types
 //! are reported as not read, never approximated.
 
-use super::part21::Param;
+use super::part21::{Instance, Param};
 use super::Reader;
 use crate::io::ReadError;
 use crate::number::Rational;
@@ -381,6 +381,9 @@ pub(super) fn dot(a: &[Rational], b: &[Rational]) -> Rational {
     a.iter().zip(b).map(|(x, y)| Rational::from(x * y)).sum()
 }
 
+/// A B-spline entity's head attributes and its knot attributes (`None`: implied).
+type BsplineParts<'i> = (&'i [Param], Option<&'i [Param]>);
+
 /// The knots Part 42 implies for a quasi-uniform B-spline of `n` control points and degree `p`:
 /// `0` and `n − p` each `p + 1` times, the integers between once (too few points give a
 /// vector the B-spline's own checks refuse).
@@ -626,6 +629,49 @@ impl Reader<'_> {
         }
     }
 
+    /// A B-spline curve's or surface's (`kind` `CURVE` or `SURFACE`) attributes: those of
+    /// `B_SPLINE_kind` (`counts[0]` of them) and those of its knots (`counts[1]`; `None` for a
+    /// `QUASI_UNIFORM_kind`, whose knots are implied), from a simple instance (after its name)
+    /// or from the parts of a complex one (with `RATIONAL_B_SPLINE_kind` beside them); `None`
+    /// when the instance is neither.
+    fn bspline_parts<'i>(
+        &self,
+        id: u64,
+        inst: &'i Instance,
+        kind: &str,
+        [head, knot_count]: [usize; 2],
+    ) -> Result<Option<BsplineParts<'i>>, ReadError> {
+        let knotted = inst.record(&format!("B_SPLINE_{kind}_WITH_KNOTS"));
+        let quasi = inst.record(&format!("QUASI_UNIFORM_{kind}"));
+        let ((Some(b), _) | (None, Some(b))) = (knotted, quasi) else {
+            return Ok(None);
+        };
+        if inst.complex {
+            let Some(h) = inst.record(&format!("B_SPLINE_{kind}")) else {
+                return Err(self.err(
+                    id,
+                    format!(
+                        "a complex B-spline {} without its B_SPLINE_{kind} part",
+                        kind.to_lowercase()
+                    ),
+                ));
+            };
+            return Ok(Some((&h.params[..], knotted.map(|k| &k.params[..]))));
+        }
+        let needed = 1 + head + if knotted.is_some() { knot_count } else { 0 };
+        let p = &b.params[..];
+        if p.len() < needed {
+            return Err(self.err(
+                id,
+                format!("{} attributes where {needed} are needed", p.len()),
+            ));
+        }
+        Ok(Some((
+            &p[1..1 + head],
+            knotted.map(|_| &p[1 + head..1 + head + knot_count]),
+        )))
+    }
+
     /// A curve of dimension `dim`, or why it is not read.
     pub(super) fn curve(
         &self,
@@ -634,35 +680,8 @@ impl Reader<'_> {
         dim: usize,
     ) -> Result<Result<Curve, String>, ReadError> {
         let inst = self.instance(from, id, "curve")?;
-        let knotted = inst.record("B_SPLINE_CURVE_WITH_KNOTS");
-        let quasi = inst.record("QUASI_UNIFORM_CURVE");
-        if knotted.is_some() || quasi.is_some() {
-            // Simple: (name, degree, points, form, closed, self_intersect, mults, knots, spec);
-            // complex: B_SPLINE_CURVE(degree, points, form, closed, self_intersect) with
-            // B_SPLINE_CURVE_WITH_KNOTS(mults, knots, spec) and RATIONAL_B_SPLINE_CURVE(weights).
-            // A QUASI_UNIFORM_CURVE has no knots: they are implied.
-            let (head, knots) = if inst.complex {
-                let Some(h) = inst.record("B_SPLINE_CURVE") else {
-                    return Err(self.err(
-                        id,
-                        "a complex B-spline curve without its B_SPLINE_CURVE part",
-                    ));
-                };
-                (&h.params[..], knotted.map(|b| &b.params[..]))
-            } else {
-                let (b, needed) = match knotted {
-                    Some(b) => (b, 9),
-                    None => (quasi.unwrap_or(&inst.records[0]), 6),
-                };
-                let p = &b.params[..];
-                if p.len() < needed {
-                    return Err(self.err(
-                        id,
-                        format!("{} attributes where {needed} are needed", p.len()),
-                    ));
-                }
-                (&p[1..6], knotted.map(|_| &p[6..9]))
-            };
+        // (degree, points, form, closed, self_intersect); (mults, knots, spec).
+        if let Some((head, knots)) = self.bspline_parts(id, inst, "CURVE", [5, 3])? {
             let degree = self.count(id, self.attr(id, head, 0, "degree")?, "degree", 1_000)?;
             let cps = self.list(
                 id,
@@ -818,32 +837,9 @@ impl Reader<'_> {
         id: u64,
     ) -> Result<Result<StepSurface, String>, ReadError> {
         let inst = self.instance(from, id, "surface")?;
-        let knotted = inst.record("B_SPLINE_SURFACE_WITH_KNOTS");
-        let quasi = inst.record("QUASI_UNIFORM_SURFACE");
-        if knotted.is_some() || quasi.is_some() {
-            // Knots as listed, or implied by a quasi-uniform surface (`None`).
-            let (head, knots) = if inst.complex {
-                let Some(h) = inst.record("B_SPLINE_SURFACE") else {
-                    return Err(self.err(
-                        id,
-                        "a complex B-spline surface without its B_SPLINE_SURFACE part",
-                    ));
-                };
-                (&h.params[..], knotted.map(|b| &b.params[..]))
-            } else {
-                let (b, needed) = match knotted {
-                    Some(b) => (b, 13),
-                    None => (quasi.unwrap_or(&inst.records[0]), 8),
-                };
-                let p = &b.params[..];
-                if p.len() < needed {
-                    return Err(self.err(
-                        id,
-                        format!("{} attributes where {needed} are needed", p.len()),
-                    ));
-                }
-                (&p[1..8], knotted.map(|_| &p[8..13]))
-            };
+        // (u_degree, v_degree, points, form, u_closed, v_closed, self_intersect);
+        // (u_mults, v_mults, u_knots, v_knots, spec).
+        if let Some((head, knots)) = self.bspline_parts(id, inst, "SURFACE", [7, 5])? {
             let deg = [
                 self.count(id, self.attr(id, head, 0, "u_degree")?, "u_degree", 1_000)?,
                 self.count(id, self.attr(id, head, 1, "v_degree")?, "v_degree", 1_000)?,
