@@ -874,7 +874,8 @@ impl Reader<'_> {
                     points.push([c[0].clone(), c[1].clone(), c[2].clone()]);
                 }
             }
-            let closed = [3, 4].map(|k| matches!(head.get(k), Some(Param::Enum(e)) if e == "T"));
+            // (u_degree, v_degree, points, form, u_closed, v_closed, self_intersect)
+            let closed = [4, 5].map(|k| matches!(head.get(k), Some(Param::Enum(e)) if e == "T"));
             let (ku, kv) = match knots {
                 Some(knots) => (
                     self.knots(id, knots, (0, 2), nu + deg[0] + 1)?,
