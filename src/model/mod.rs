@@ -88,7 +88,7 @@ pub enum Format {
     Teaset,
     /// IGES 5.3, entity 128 surfaces.
     Iges,
-    /// STEP (ISO 10303-21): faces on B-spline surfaces and planes.
+    /// STEP (ISO 10303-21): faces on B-spline surfaces, planes and cylinders.
     Step,
     /// Wavefront OBJ meshes.
     Obj,

@@ -555,6 +555,18 @@ fn step_cylinder_faces_map_rulings_and_circles_onto_the_exact_cylinder() {
         ([0.0, 0.0], [2.0, 2.0], Orientation::CounterClockwise)
     );
     on_cylinder(&m);
+    // A ruling whose line does not pass through its vertices (moved to x = 2): the face is
+    // left out, naming it.
+    let moved = text.replace(
+        "#200 = LINE('',#100,#10);",
+        "#199 = CARTESIAN_POINT('',(2.,0.,0.));\n#200 = LINE('',#199,#10);",
+    );
+    assert_ne!(moved, text);
+    let err = limn::io::read_model_bytes("moved.stp", moved.as_bytes(), None).unwrap_err();
+    assert!(
+        err.to_string().contains("does not pass through its vertex"),
+        "{err}"
+    );
     // Angles 270..90 through the seam: the turn [1, 5] holds t from 3 to 5.
     let text = half(3, 1);
     let m = limn::io::read_model_bytes("across.stp", text.as_bytes(), None).unwrap();

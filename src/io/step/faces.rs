@@ -273,7 +273,7 @@ fn surface_point(s: &StepSurface, u: &Rational, v: &Rational) -> Point3 {
         StepSurface::Plane(f) => {
             [0, 1, 2].map(|k| &f.o[k] + Rational::from(u * &f.x[k]) + Rational::from(v * &f.y[k]))
         }
-        // t outside [0, 4] (never made by the reader) is clamped to the seam.
+        // t is taken modulo 4 (a loop laid on a turn [m, m + 4]).
         StepSurface::Cylinder(c) => surface_point_of(c, u, v),
     }
 }
@@ -327,7 +327,7 @@ fn t_range(curves: &[(ParameterCurve, Option<usize>)]) -> Option<(Rational, Rati
 
 /// A cylinder face's loops laid out on one turn `[m, m + 4]` of `t`: where a loop jumps across
 /// the seam (a piece starting 4 away in `t` from where the one before ends, at its height), the
-/// rest of the loop is moved by 4 to join it; each loop that then closes is moved by a multiple
+/// rest of the loop is moved by 4 to join it; each loop left is then moved by a multiple
 /// of 4 into the turn, for the least whole quarter `m` whose turn holds them all. A loop that
 /// goes once round (its end 4 from its start) is an end circle of a band: two such, each at one
 /// height, the face's lowest and highest, make the face's outer boundary the whole band (the
@@ -1245,7 +1245,8 @@ impl Reader<'_> {
         Ok(Some(info))
     }
 
-    /// An edge on a cylinder face, from its model-space curve: a line along the axis is the
+    /// An edge on a cylinder face, from its model-space curve: a line along the axis (through
+    /// its start vertex; its end vertex checked on the segment's end) is the
     /// segment `t = t₀` between its vertices' heights (on the seam `t₀ = 0`, also `t₀ = 4`:
     /// two candidates); a circle about the axis of the cylinder's radius is the segment
     /// `v = v₀` between its vertices' parameters, split at the seam when it crosses it
@@ -1276,8 +1277,16 @@ impl Reader<'_> {
         let zero = Rational::from(0);
         let four = Rational::from(4);
         match (&c, &conic) {
-            (Curve::Line { d, .. }, None) => {
-                // Along the axis: the direction has no part across it.
+            (Curve::Line { p: on, d }, None) => {
+                // Through its start vertex (up to the tolerance), and along the axis: the
+                // direction has no part across it.
+                let gap: Vec<Rational> = (0..3).map(|k| Rational::from(&s[k] - &on[k])).collect();
+                let h = dot(&gap, &cyl.z);
+                if !(0..3).all(|k| near(&gap[k] - Rational::from(&h * &cyl.z[k]))) {
+                    return Ok(Err(format!(
+                        "edge #{ec} on a cylinder: its line #{id} does not pass through its vertex"
+                    )));
+                }
                 let along = dot(d, &cyl.z);
                 let across: Vec<Rational> =
                     (0..3).map(|k| &d[k] - Rational::from(&along * &cyl.z[k])).collect();

@@ -1,7 +1,9 @@
 //! STEP geometry (ISO 10303-42) as exact data: points, directions and placements; the curves
-//! of edges and trims (B-spline curves with knots, rational or not, and lines); the surfaces
-//! of faces (B-spline surfaces with knots, rational or not, and planes). Other entity types
-//! are reported as not read, never approximated.
+//! of edges and trims (B-spline curves with knots or quasi-uniform, rational or not, lines,
+//! circles and ellipses as exact rational quarter arcs, trimmed curves of these, polylines);
+//! the surfaces of faces (B-spline surfaces with knots or quasi-uniform, planes, circular
+//! cylinders as exact rational patches). Other entity types are reported as not read, never
+//! approximated.
 
 use super::part21::{Instance, Param};
 use super::Reader;
@@ -309,10 +311,9 @@ impl Conic {
         }
     }
 
-    /// The parameter of [`Conic::curve`] at the point of the conic nearest `p` in the sense
-    /// of the stereographic map (exact for a point on the conic; for a point off it, the
-    /// conic's point on the ray from the centre, up to the quarter's parameterisation): the
-    /// quarter `k` whose right angle holds `p`'s direction, and `s = Y'/(1 + X')` there (at
+    /// The parameter of [`Conic::curve`] at `p`: exact for a point on the conic; for a point
+    /// off it, a nearby parameter (its error grows with the point's distance from the conic,
+    /// and the vertex check of the face judges it): the quarter `k` whose right angle holds `p`'s direction, and `s = Y'/(1 + X')` there (at
     /// most 1, and taken as 0 or 1 within 2^-40 of them), `(X', Y')` the point's coordinates on
     /// the unit circle's scale rotated back by `k`; in `[0, 4)`.
     pub(super) fn parameter(&self, p: &[Rational]) -> Rational {
