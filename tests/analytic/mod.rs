@@ -34,7 +34,6 @@ pub enum Shape {
 /// The ray parameters t in (0, T] where p − t d meets the shape, or None if some root is
 /// too close to 0 or to a double root to be counted reliably in f64.
 pub fn roots(shape: Shape, p: [f64; 3], d: [f64; 3]) -> Option<Vec<f64>> {
-    let at = |t: f64| [p[0] - t * d[0], p[1] - t * d[1], p[2] - t * d[2]];
     match shape {
         Shape::Sphere(c, r) => {
             let o = [p[0] - c[0], p[1] - c[1], p[2] - c[2]];
@@ -57,36 +56,104 @@ pub fn roots(shape: Shape, p: [f64; 3], d: [f64; 3]) -> Option<Vec<f64>> {
             Some(ts.into_iter().filter(|t| *t > 1e-5).collect())
         }
         Shape::Torus(c, big, r) => {
-            let f = |t: f64| {
-                let x = at(t);
-                let y = [x[0] - c[0], x[1] - c[1], x[2] - c[2]];
-                let s = y[0] * y[0] + y[1] * y[1] + y[2] * y[2] + big * big - r * r;
-                s * s - 4.0 * big * big * (y[0] * y[0] + y[1] * y[1])
-            };
-            let n = 4000;
-            let t_max = 40.0;
-            let mut out = Vec::new();
-            let mut prev = f(1e-4);
-            let mut prev_t = 1e-4;
-            for k in 1..=n {
-                let t = 1e-4 + t_max * k as f64 / n as f64;
-                let v = f(t);
-                if (v > 0.0) != (prev > 0.0) {
-                    out.push(0.5 * (t + prev_t));
+            // f(t) = S² − 4R²ρ with S = |o − t d|² + R² − r², ρ = (o − t d)ₓ² + (o − t d)ᵧ²:
+            // a quartic in t (coefficients lowest first), its real roots isolated between the
+            // roots of its derivatives.
+            let o = [p[0] - c[0], p[1] - c[1], p[2] - c[2]];
+            let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+            let s = [
+                dot(&o, &o) + big * big - r * r,
+                -2.0 * dot(&o, &d),
+                dot(&d, &d),
+            ];
+            let rho = [
+                dot(&o[..2], &o[..2]),
+                -2.0 * dot(&o[..2], &d[..2]),
+                dot(&d[..2], &d[..2]),
+            ];
+            let mut f = [0.0; 5];
+            for i in 0..3 {
+                for j in 0..3 {
+                    f[i + j] += s[i] * s[j];
                 }
-                // Near-tangency: |f| tiny without a sign change.
-                if v.abs() < 1e-7 {
-                    return None;
-                }
-                prev = v;
-                prev_t = t;
+                f[i] -= 4.0 * big * big * rho[i];
             }
-            if f(1e-4).abs() < 1e-6 {
+            // The point's own sheet: roots at t = 0 (two where the ray is tangent there, a
+            // silhouette point) are divided out; a root left near 0 is not counted reliably.
+            let mut f = f.to_vec();
+            for _ in 0..2 {
+                let scale: f64 = f.iter().map(|x| x.abs()).sum();
+                if f[0].abs() <= 1e-9 * scale {
+                    f.remove(0);
+                }
+            }
+            let ts = real_roots(&f, -1.0, 40.0)?;
+            if ts.iter().any(|t| t.abs() < 1e-5) {
                 return None;
             }
-            Some(out)
+            Some(ts.into_iter().filter(|t| *t > 0.0).collect())
         }
     }
+}
+
+/// The value of a polynomial (coefficients lowest first) and a bound on its rounding scale.
+fn horner(c: &[f64], t: f64) -> (f64, f64) {
+    let v = c.iter().rev().fold(0.0, |acc, x| acc * t + x);
+    let scale = c
+        .iter()
+        .rev()
+        .fold(0.0, |acc, x: &f64| acc * t.abs() + x.abs());
+    (v, scale)
+}
+
+/// The real roots of a polynomial in [a, b], each found by bisection on an interval between
+/// consecutive roots of its derivative (where it is monotone); `None` if it nearly vanishes at
+/// a root of its derivative (a double root, or two roots closer than f64 can separate).
+pub fn real_roots(c: &[f64], a: f64, b: f64) -> Option<Vec<f64>> {
+    let n = c.len();
+    if n <= 1 {
+        return Some(Vec::new());
+    }
+    let dc: Vec<f64> = c
+        .iter()
+        .enumerate()
+        .skip(1)
+        .map(|(k, x)| k as f64 * x)
+        .collect();
+    let mut cuts = vec![a];
+    cuts.extend(real_roots(&dc, a, b)?);
+    cuts.push(b);
+    let mut out = Vec::new();
+    for w in cuts.windows(2) {
+        let (mut lo, mut hi) = (w[0], w[1]);
+        let (flo, slo) = horner(c, lo);
+        let (fhi, shi) = horner(c, hi);
+        for (v, sc, x) in [(flo, slo, lo), (fhi, shi, hi)] {
+            if x != a && x != b && v.abs() <= 1e-9 * sc {
+                return None;
+            }
+        }
+        if (flo > 0.0) == (fhi > 0.0) || flo == 0.0 && fhi == 0.0 {
+            continue;
+        }
+        let up = fhi > 0.0;
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if mid <= lo || mid >= hi {
+                break;
+            }
+            if (horner(c, mid).0 > 0.0) == up {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        let t = 0.5 * (lo + hi);
+        if out.last().is_none_or(|x: &f64| (t - x).abs() > 1e-12) {
+            out.push(t);
+        }
+    }
+    Some(out)
 }
 
 pub fn reference_qi(shapes: &[Shape], p: [f64; 3], d: [f64; 3]) -> Option<usize> {

@@ -8,6 +8,7 @@
 //! every unresolved box marks the stretches it covers as unresolved.
 
 use crate::analysis::contour::curves::Silhouette;
+use crate::analysis::visibility::hlr::cusps::cusp_runs;
 use crate::analysis::visibility::hlr::lemmas::{
     arc_fold_exclusion, common_monotone, fold_cover, vertex_exclusion,
 };
@@ -73,6 +74,33 @@ pub(super) fn crossings(
             }
         }
     }
+    // Lemma C around the arcs whose images are not monotone: a run of segments with an
+    // injective image, cut where its image tangent vanishes (a cusp: the QI may change).
+    let runs = if opts.curve.past_deadline() {
+        Vec::new()
+    } else {
+        cusp_runs(scene, segments, &opts.crossing)
+    };
+    // The runs each segment lies in (two runs grown from neighbouring segments may overlap
+    // and share their cusp: it is cut and counted once).
+    let mut run_of: Vec<Vec<usize>> = vec![Vec::new(); segments.len()];
+    let mut cusps: Vec<(usize, [f64; 2])> = Vec::new();
+    for (r, run) in runs.iter().enumerate() {
+        for &k in &run.members {
+            run_of[k].push(r);
+        }
+        if let Some((c, at)) = run.cusp {
+            if !cusps
+                .iter()
+                .any(|(d, x)| *d == c && x[0] <= at[1] && at[0] <= x[1])
+            {
+                events[c].push(Event::cut(at));
+                cusps.push((c, at));
+            }
+        }
+    }
+    stats.cusps = cusps.len();
+    let same_run = |a: usize, b: usize| run_of[a].iter().any(|r| run_of[b].contains(r));
     let mut jobs: Vec<Job> = Vec::new();
     for (a, sa) in segments.iter().enumerate() {
         // Past the deadline, the pairs (a', b) with a ≤ a' < b and the penetrations and
@@ -86,7 +114,7 @@ pub(super) fn crossings(
         }
         // Every vertex inside a segment cuts it (a junction on a side).
         for v in &sa.vertices {
-            events[a].push(Event::cut(v.param));
+            events[a].push(Event::vertex(v.param));
         }
         // With what lies behind wanted, so does every end of a stretch of decided role.
         if opts.behind {
@@ -101,6 +129,7 @@ pub(super) fn crossings(
             (None, _) if !roles.outline[a] => {}
             (None, _) => jobs.push(Job::SelfCrossing(a)),
             (Some(_), Some(_)) => {}
+            (Some(_), None) if !run_of[a].is_empty() => {}
             (Some(_), None) => events[a].push(Event::unresolved(sa.range, Reason::OutlineCusp)),
         }
         for (b, sb) in segments.iter().enumerate().skip(a + 1) {
@@ -111,6 +140,10 @@ pub(super) fn crossings(
             stats.pairs += 1;
             if !roles.outline[a] && !roles.outline[b] {
                 stats.cluster_pairs += 1;
+                continue;
+            }
+            if same_run(a, b) {
+                stats.cusp_pairs += 1;
                 continue;
             }
             if sa.chain == sb.chain && sa.order.abs_diff(sb.order) == 1 && common_monotone(sa, sb) {
@@ -327,6 +360,8 @@ fn job_domain(segments: &[Segment], job: Job) -> DyadicBoxN {
 pub(super) struct Event {
     pub(super) at: [f64; 2],
     pub(super) unresolved: Option<Reason>,
+    /// The cut is one of the segment's vertices (not a root of a system).
+    pub(super) vertex: bool,
 }
 
 impl Event {
@@ -334,12 +369,21 @@ impl Event {
         Event {
             at,
             unresolved: None,
+            vertex: false,
+        }
+    }
+    /// The cut at one of the segment's vertices.
+    pub(super) fn vertex(at: [f64; 2]) -> Event {
+        Event {
+            vertex: true,
+            ..Event::cut(at)
         }
     }
     pub(super) fn unresolved(at: [f64; 2], why: Reason) -> Event {
         Event {
             at,
             unresolved: Some(why),
+            vertex: false,
         }
     }
 }

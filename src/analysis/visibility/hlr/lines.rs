@@ -173,7 +173,7 @@ pub(super) fn strict_sign(p: &Poly, domain: &DyadicBoxN) -> Option<bool> {
 
 /// The strict sign of an interval polynomial on a dyadic box (its Bernstein coefficients
 /// there), if all coefficients share one.
-fn sign_on(p: &Bernstein<Interval>, domain: &DyadicBoxN) -> Option<bool> {
+pub(super) fn sign_on(p: &Bernstein<Interval>, domain: &DyadicBoxN) -> Option<bool> {
     // Bounds rounded outward: a sign on the larger box holds on the box.
     let lo: Vec<f64> = domain.iter().map(|d| d.0.to_f64_bounds().0).collect();
     let hi: Vec<f64> = domain.iter().map(|d| d.1.to_f64_bounds().1).collect();

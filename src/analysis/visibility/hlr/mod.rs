@@ -30,6 +30,7 @@
 //! other (penetrations are searched between non-adjacent patches only).
 
 mod crossings;
+mod cusps;
 mod drawing;
 mod lemmas;
 mod lines;

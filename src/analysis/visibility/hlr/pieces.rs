@@ -88,6 +88,8 @@ pub(super) fn all_pieces(
             )
         })
         .collect();
+    let mut per_segment = per_segment;
+    stats.qi_across_splits = qi_across_split_points(segments, events, &mut per_segment, opts);
     let mut pieces = Vec::new();
     for (p, tally) in per_segment {
         pieces.extend(p);
@@ -97,6 +99,82 @@ pub(super) fn all_pieces(
         stats.escalations.merge(&tally.escalations);
     }
     pieces
+}
+
+/// Claim 3's split points (`proofs/hidden-lines.md`): a point where a line was cut into
+/// segments to make their images monotone (a [`Key::Param`] vertex) is no event, so where no
+/// root of a system holds it, the piece that ends there and the piece that starts there on
+/// the other segment have one QI. A piece whose ray tests were all refused (a sliver beside a
+/// cusp) and which holds no event takes the QI of the one across. Returns how many did.
+fn qi_across_split_points(
+    segments: &[Segment],
+    events: &[Vec<Event>],
+    pieces: &mut [(Vec<HlrPiece>, SampleTally)],
+    opts: &HlrOptions,
+) -> usize {
+    // Each split point: (segment it ends, segment it starts, its parameter).
+    let mut ends: std::collections::HashMap<usize, (Option<usize>, Option<usize>, f64)> =
+        std::collections::HashMap::new();
+    for (k, sg) in segments.iter().enumerate() {
+        for v in &sg.vertices {
+            let Key::Param { id } = v.key else { continue };
+            let e = ends.entry(id).or_insert((None, None, v.param[0]));
+            if v.param[0] >= sg.range[1] {
+                e.0 = Some(k);
+            } else if v.param[1] <= sg.range[0] {
+                e.1 = Some(k);
+            }
+        }
+    }
+    // No root of a system (any event but the vertices' own cuts) holds x on segment k.
+    let free_at = |k: usize, x: f64| {
+        events[k]
+            .iter()
+            .all(|e| e.vertex || !(e.at[0] <= x && x <= e.at[1]))
+    };
+    // No event (a vertex's cut included) meets the inside of [p0, p1] on segment k.
+    let free_inside =
+        |k: usize, [p0, p1]: [f64; 2]| events[k].iter().all(|e| e.at[1] <= p0 || e.at[0] >= p1);
+    let mut done = 0;
+    loop {
+        let mut changed = false;
+        for &(first, second, c) in ends.values() {
+            let (Some(a), Some(b)) = (first, second) else {
+                continue;
+            };
+            if !free_at(a, c) || !free_at(b, c) {
+                continue;
+            }
+            let (Some(ia), Some(ib)) = (
+                pieces[a].0.iter().position(|p| p.param[1] >= c),
+                pieces[b].0.iter().position(|p| p.param[0] <= c),
+            ) else {
+                continue;
+            };
+            let (pa, pb) = (&pieces[a].0[ia], &pieces[b].0[ib]);
+            if pa.param[1] != c || pb.param[0] != c {
+                continue;
+            }
+            let (to, qi) = match (pa.qi, pb.qi) {
+                (None, Some(q)) if free_inside(a, pa.param) => ((a, ia), q),
+                (Some(q), None) if free_inside(b, pb.param) => ((b, ib), q),
+                _ => continue,
+            };
+            let piece = &mut pieces[to.0].0[to.1];
+            piece.qi = Some(qi);
+            piece.reason = match (opts.tol, piece.error_bound) {
+                (Some(_), None) if opts.curve.past_deadline() => Some(Reason::TimeLimit),
+                (Some(tol), None) => Some(Reason::DrawingTolerance { tol }),
+                _ => None,
+            };
+            piece.certified = piece.reason.is_none();
+            done += 1;
+            changed = true;
+        }
+        if !changed {
+            return done;
+        }
+    }
 }
 
 /// A stretch of a segment between its events, before it is drawn.

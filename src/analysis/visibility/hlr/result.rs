@@ -85,6 +85,14 @@ pub struct HlrStats {
     pub cluster_edges: usize,
     /// Segment-patch penetration systems solved.
     pub penetration_systems: usize,
+    /// Cusps of the outline proven by lemma C (proofs/hidden-lines.md): runs of silhouette
+    /// segments with an injective image, cut where the image tangent vanishes.
+    pub cusps: usize,
+    /// Segment pairs skipped because both lie in one such run.
+    pub cusp_pairs: usize,
+    /// Pieces whose ray tests were refused that took the QI of the piece across a point
+    /// where their line was split for monotonicity (no event: proofs/hidden-lines.md).
+    pub qi_across_splits: usize,
     /// Boxes around shared vertices excluded by a lemma (proofs/hidden-lines.md).
     pub excluded_vertices: usize,
     /// Boxes examined by the crossing and penetration systems.
