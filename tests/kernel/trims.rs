@@ -508,6 +508,8 @@ fn step_cylinder_faces_map_rulings_and_circles_onto_the_exact_cylinder() {
     );
     let m = limn::io::read_model_bytes("band.stp", band.as_bytes(), None).unwrap();
     assert_eq!(m.faces.len(), 1, "{:?}", m.warnings);
+    // The cylinder is one surface of the model (it was not counted).
+    assert_eq!(m.surfaces, 1);
     let f = &m.faces[0];
     assert!(f.outer.is_none() && f.inner.is_empty(), "{f:?}");
     assert_eq!(

@@ -84,7 +84,8 @@ enum Untrimmed {
     LeftOut(String),
 }
 
-/// The model-space end points of the curve's domain, by exact de Boor evaluation.
+/// The end points of a B-spline curve's domain (in model space, or in a surface's
+/// parameters for a pcurve), by exact de Boor evaluation.
 fn nurbs_ends(c: &Curve) -> Option<[Vec<Rational>; 2]> {
     let Curve::Nurbs {
         degree,
@@ -95,9 +96,21 @@ fn nurbs_ends(c: &Curve) -> Option<[Vec<Rational>; 2]> {
     else {
         return None;
     };
-    let n = NurbsCurve::<4>::new(*degree, knots.clone(), points, weights, None).ok()?;
-    let [a, b] = n.range().clone();
-    Some([n.eval(&a), n.eval(&b)])
+    fn ends<const K: usize>(
+        degree: usize,
+        knots: &[Rational],
+        points: &[Vec<Rational>],
+        weights: &[Rational],
+    ) -> Option<[Vec<Rational>; 2]> {
+        let n = NurbsCurve::<K>::new(degree, knots.to_vec(), points, weights, None).ok()?;
+        let [a, b] = n.range().clone();
+        Some([n.eval(&a), n.eval(&b)])
+    }
+    match points.first()?.len() {
+        2 => ends::<3>(*degree, knots, points, weights),
+        3 => ends::<4>(*degree, knots, points, weights),
+        _ => None,
+    }
 }
 
 /// The max-norm distance of two points, in f64.
@@ -335,6 +348,12 @@ fn t_range(curves: &[(ParameterCurve, Option<usize>)]) -> Option<(Rational, Rati
 /// turn, or go round otherwise.
 fn on_one_turn(loops: &mut Vec<ReadLoop>) -> Result<(usize, bool), String> {
     let four = Rational::from(4);
+    // Heights that meet across the seam within the gap the loops are closed across (a
+    // fraction [`trimmed::PARAMETER_GAP`] of the domain's longer side) are one point.
+    let Some([lo, hi]) = heights(loops) else {
+        return Err("its loops have no points".into());
+    };
+    let level = PARAMETER_GAP_F64 * Rational::from(&hi - &lo).to_f64().max(4.0);
     let mut round = Vec::new();
     for (k, (_, _, curves)) in loops.iter_mut().enumerate() {
         let mut offset = Rational::from(0);
@@ -344,8 +363,12 @@ fn on_one_turn(loops: &mut Vec<ReadLoop>) -> Result<(usize, bool), String> {
                 let start = curves[i].0.start();
                 let jump = Rational::from(&end[0] - &start[0]) - &offset;
                 let dv = Rational::from(&start[1] - &end[1]).abs().to_f64();
-                let level = 1e-9 * (1.0 + end[1].to_f64().abs());
-                if dv <= level && jump.clone().abs() == four {
+                if jump.clone().abs() == four {
+                    if dv > level {
+                        return Err(format!(
+                            "a loop crosses the seam with its heights {dv:.3e} apart there"
+                        ));
+                    }
                     offset += jump;
                 }
             }
@@ -358,17 +381,12 @@ fn on_one_turn(loops: &mut Vec<ReadLoop>) -> Result<(usize, bool), String> {
             _ => continue,
         };
         let dv = Rational::from(&first[1] - &last[1]).abs().to_f64();
-        if Rational::from(&last[0] - &first[0]).abs() == four
-            && dv <= 1e-9 * (1.0 + first[1].to_f64().abs())
-        {
+        if Rational::from(&last[0] - &first[0]).abs() == four && dv <= level {
             round.push(k);
         }
     }
     let band = !round.is_empty();
     if band {
-        let Some([lo, hi]) = heights(loops) else {
-            return Err("its loops have no points".into());
-        };
         let at = |k: usize| -> Option<Rational> {
             let mut vs = loops[k]
                 .2
@@ -390,9 +408,8 @@ fn on_one_turn(loops: &mut Vec<ReadLoop>) -> Result<(usize, bool), String> {
             loops.remove(k);
         }
     }
-    // A band keeps the turn [0, 4] (its end circles were cut at t = 0).
-    let turns: &[usize] = if band { &[0] } else { &[0, 1, 2, 3] };
-    'turn: for &m in turns {
+    // (A band's end circles are gone: its holes choose the turn like any loop.)
+    'turn: for m in 0..4usize {
         let lo = Rational::from(m as u32);
         let hi = Rational::from(m as u32 + 4);
         let mut moves = Vec::with_capacity(loops.len());
@@ -535,12 +552,13 @@ impl Reader<'_> {
                 ),
             });
         }
-        model.surfaces = surfaces.len()
-            + model
-                .patches
-                .iter()
-                .filter(|p| p.source.span.is_none())
-                .count();
+        // The surfaces the patches come from (B-spline surfaces, planes, cylinders' faces).
+        model.surfaces = model
+            .patches
+            .iter()
+            .map(|p| p.source.surface)
+            .collect::<std::collections::BTreeSet<_>>()
+            .len();
         model.brep = Some(Brep {
             vertices: topo.vertices.len(),
             edges: topo.edges,
