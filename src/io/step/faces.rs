@@ -345,15 +345,15 @@ fn t_range(curves: &[(ParameterCurve, Option<usize>)]) -> Option<(Rational, Rati
 /// goes once round (its end 4 from its start) is an end circle of a band: two such, each at one
 /// height, the face's lowest and highest, make the face's outer boundary the whole band (the
 /// patch's domain), and are removed (`.1` is then true). `Err` when the loops fit no such
-/// turn, or go round otherwise.
-fn on_one_turn(loops: &mut Vec<ReadLoop>) -> Result<(usize, bool), String> {
+/// turn, or go round otherwise. `[lo, hi]` are the loops' least and largest heights.
+fn on_one_turn(
+    loops: &mut Vec<ReadLoop>,
+    [lo, hi]: &[Rational; 2],
+) -> Result<(usize, bool), String> {
     let four = Rational::from(4);
     // Heights that meet across the seam within the gap the loops are closed across (a
     // fraction [`trimmed::PARAMETER_GAP`] of the domain's longer side) are one point.
-    let Some([lo, hi]) = heights(loops) else {
-        return Err("its loops have no points".into());
-    };
-    let level = PARAMETER_GAP_F64 * Rational::from(&hi - &lo).to_f64().max(4.0);
+    let level = PARAMETER_GAP_F64 * Rational::from(hi - lo).to_f64().max(4.0);
     let mut round = Vec::new();
     for (k, (_, _, curves)) in loops.iter_mut().enumerate() {
         let mut offset = Rational::from(0);
@@ -398,7 +398,7 @@ fn on_one_turn(loops: &mut Vec<ReadLoop>) -> Result<(usize, bool), String> {
         };
         let ends = round.len() == 2
             && matches!((at(round[0]), at(round[1])), (Some(a), Some(b))
-                if (a == lo && b == hi) || (a == hi && b == lo));
+                if (a == *lo && b == *hi) || (a == *hi && b == *lo));
         if !ends {
             return Err(
                 "a loop goes round the cylinder other than as an end circle of a band".into(),
@@ -749,7 +749,7 @@ impl Reader<'_> {
             let Some(heights) = heights(&loops) else {
                 return Ok(Err(Untrimmed::LeftOut("its loops have no points".into())));
             };
-            match on_one_turn(&mut loops) {
+            match on_one_turn(&mut loops, &heights) {
                 Ok((m, b)) => {
                     cylinder = Some((m, heights));
                     band = b;

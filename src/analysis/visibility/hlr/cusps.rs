@@ -15,7 +15,9 @@
 //! the two branches from that zero are graphs over `e` on the same side of it, one above and
 //! one below their common tangent: they meet only there.
 
-use crate::analysis::visibility::hlr::lines::{monotone_along, narrow_to_curve, sign_on, Segment};
+use crate::analysis::visibility::hlr::lines::{
+    monotone_along, narrow_to_curve, rational_direction, sign_on, Segment,
+};
 use crate::analysis::visibility::hlr::result::LineKind;
 use crate::analysis::visibility::scene::Scene;
 use crate::bernstein::{Bernstein, Poly};
@@ -113,12 +115,7 @@ fn with_column(
     opts: &SystemOptions,
 ) -> Option<CuspRun> {
     let s = &segments[c];
-    let n = m_centre[0].hypot(m_centre[1]);
-    if !n.is_finite() || n <= 0.0 {
-        return None;
-    }
-    let r = |x: f64| Rational::from_f64((x / n * 1024.0).round() / 1024.0).unwrap_or_default();
-    let e = [r(m_centre[0]), r(m_centre[1])];
+    let e = rational_direction(m_centre)?;
     let across = [Rational::from(-&e[1]), e[0].clone()];
     let dot = |d: &[Rational; 2]| &m[0].scale(&d[0]) + &m[1].scale(&d[1]);
     let (a, b) = (dot(&e), dot(&across));

@@ -219,17 +219,22 @@ pub(super) fn find_monotone(t: &[Poly; 2], domain: &DyadicBoxN) -> Option<([Rati
         .iter()
         .map(|d| 0.5 * (d.0.to_f64() + d.1.to_f64()))
         .collect();
-    let tf: Vec<f64> = t
-        .iter()
-        .map(|p| p.convert::<f64>(Precision::F64).eval(&mid))
-        .collect();
-    let n = tf[0].hypot(tf[1]);
+    let tf = t
+        .clone()
+        .map(|p| p.convert::<f64>(Precision::F64).eval(&mid));
+    let e = rational_direction(tf)?;
+    monotone_along(t, &e, domain).map(|s| (e, s))
+}
+
+/// A vector's direction rounded to a rational one (components on the 1/1024 grid of the
+/// unit vector), `None` for the zero vector or one not finite.
+pub(super) fn rational_direction(v: [f64; 2]) -> Option<[Rational; 2]> {
+    let n = v[0].hypot(v[1]);
     if !n.is_finite() || n <= 0.0 {
         return None;
     }
     let r = |x: f64| Rational::from_f64((x / n * 1024.0).round() / 1024.0).unwrap_or_default();
-    let e = [r(tf[0]), r(tf[1])];
-    monotone_along(t, &e, domain).map(|s| (e, s))
+    Some(v.map(r))
 }
 
 /// The corner indices (into `PatchAdjacency::corners`) at the start and end of a side, in

@@ -162,11 +162,7 @@ fn qi_across_split_points(
             };
             let piece = &mut pieces[to.0].0[to.1];
             piece.qi = Some(qi);
-            piece.reason = match (opts.tol, piece.error_bound) {
-                (Some(_), None) if opts.curve.past_deadline() => Some(Reason::TimeLimit),
-                (Some(tol), None) => Some(Reason::DrawingTolerance { tol }),
-                _ => None,
-            };
+            piece.reason = drawing_shortfall(opts, piece.error_bound);
             piece.certified = piece.reason.is_none();
             done += 1;
             changed = true;
@@ -174,6 +170,16 @@ fn qi_across_split_points(
         if !changed {
             return done;
         }
+    }
+}
+
+/// Why a piece whose QI is proven is still not certified: a tolerance was asked and its
+/// drawing is not bounded within it (the time limit, if it had run out).
+fn drawing_shortfall(opts: &HlrOptions, error_bound: Option<f64>) -> Option<Reason> {
+    match (opts.tol, error_bound) {
+        (Some(_), None) if opts.curve.past_deadline() => Some(Reason::TimeLimit),
+        (Some(tol), None) => Some(Reason::DrawingTolerance { tol }),
+        _ => None,
     }
 }
 
@@ -382,12 +388,8 @@ pub(crate) fn draw_piece(
         Ok(n) => (Some(n), None),
         Err(e) => (None, Some(e)),
     };
-    if let (Some(tol), None, None) = (opts.tol, error_bound, &reason) {
-        reason = Some(if opts.curve.past_deadline() {
-            Reason::TimeLimit
-        } else {
-            Reason::DrawingTolerance { tol }
-        });
+    if reason.is_none() {
+        reason = drawing_shortfall(opts, error_bound);
     }
     HlrPiece {
         kind: s.kind,
