@@ -12,7 +12,7 @@
 //! The layers, bottom up (dependencies point downward only):
 //! 1. [`number`]: `f64`, intervals, MPFR, exact rationals behind one trait, with three-valued
 //!    signs.
-//! 2. [`bernstein`]: tensor-product Bernstein polynomials in 1 to 4 variables, generic over
+//! 2. [`bernstein`]: tensor-product Bernstein polynomials in 1 to 6 variables, generic over
 //!    the number layer; [`geometry`]: small shared primitives.
 //! 3. [`surface`] and [`model`]: rational Bézier patches, NURBS, meshes, models and their
 //!    topology; [`io`] reads model files exactly.

@@ -139,6 +139,14 @@ pub enum Reason {
         /// The patch.
         patch: usize,
     },
+    /// A box where patches `patches` may meet whose piece of their intersection curve the
+    /// curve solver did not decide (`why`).
+    IntersectionUnresolved {
+        /// The two patches.
+        patches: [usize; 2],
+        /// The solver's reason.
+        why: Box<Reason>,
+    },
     /// The line's image is not proven free of self-crossings (a cusp of the outline?).
     OutlineCusp,
     /// Where the line crosses a line of `patches[0]` (or of `patches[1]`) is not isolated.
@@ -423,6 +431,10 @@ impl fmt::Display for Reason {
             SilhouetteUnresolved { patch } => write!(
                 f,
                 "its image may cross the silhouette of patch {patch} where the curve solver left it unresolved"
+            ),
+            IntersectionUnresolved { patches: [p, q], why } => write!(
+                f,
+                "where patches {p} and {q} pass through each other is not resolved here: {why}"
             ),
             OutlineCusp => f.write_str(
                 "its image is not proven free of self-crossings (a cusp of the outline?)",

@@ -8,6 +8,7 @@ pub mod contour;
 pub mod events;
 pub mod flecnodal;
 pub mod frame;
+pub mod intersection;
 pub mod projection;
 pub mod view;
 pub mod visibility;

@@ -500,15 +500,7 @@ pub fn side_restriction(p: &Poly, edge: Edge) -> Poly {
 
 /// A univariate polynomial: `p` with variable `axis` fixed at `at`.
 pub fn fix_axis(p: &Poly, axis: usize, at: &Rational) -> Poly {
-    let r = p.restrict_rational(axis, at, at);
-    let [m, n] = [r.degrees()[0], r.degrees()[1]];
-    let coeffs: Vec<Rational> = if axis == 0 {
-        (0..=n).map(|j| r.coeff(&[0, j]).clone()).collect()
-    } else {
-        (0..=m).map(|i| r.coeff(&[i, 0]).clone()).collect()
-    };
-    let deg = if axis == 0 { n } else { m };
-    Bernstein::new(&[deg], coeffs).expect("a line of a patch")
+    crate::bernstein::fix_var(p, axis, at)
 }
 
 /// The (u, v) of a side's parameter `t`.

@@ -1,4 +1,4 @@
-//! Layer 2: Bernstein polynomials, tensor-product in 1 to 4 variables, generic over the
+//! Layer 2: Bernstein polynomials, tensor-product in 1 to 6 variables, generic over the
 //! number layer.
 //!
 //! A polynomial of degrees (d_0, ..., d_{k-1}) on the unit box `[0,1]^k` is
@@ -23,7 +23,7 @@ mod reduce;
 mod subdivide;
 
 pub use compose::{compose_curve, compose_curve_f64, compose_homogeneous, residual_hull};
-pub use poly::{lift, Bernstein, BernsteinError, MAX_VARS};
+pub use poly::{fix_var, lift, Bernstein, BernsteinError, MAX_VARS};
 pub use power::antisymmetric_quotient;
 
 /// An exact polynomial in Bernstein form: the input every analysis derives its polynomials from

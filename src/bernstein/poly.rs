@@ -3,8 +3,8 @@
 use crate::number::{Number, Precision, Rational};
 
 /// The most variables a [`Bernstein`] polynomial may have (the flecnodal and bitangent
-/// systems have four unknowns).
-pub const MAX_VARS: usize = 4;
+/// systems have four unknowns; an intersection curve's crossing with a silhouette arc six).
+pub const MAX_VARS: usize = 6;
 
 /// A polynomial that could not be built.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
@@ -55,7 +55,7 @@ impl<N: Number> Bernstein<N> {
     /// A polynomial from its degrees and its coefficients in row-major order.
     ///
     /// # Errors
-    /// [`BernsteinError`] if there are not 1 to 4 degrees or the count is not Π (d_a + 1).
+    /// [`BernsteinError`] if there are not 1 to 6 degrees or the count is not Π (d_a + 1).
     pub fn new(degrees: &[usize], coeffs: Vec<N>) -> Result<Self, BernsteinError> {
         if degrees.is_empty() || degrees.len() > MAX_VARS {
             return Err(BernsteinError::VariableCount(degrees.len()));
@@ -84,7 +84,7 @@ impl<N: Number> Bernstein<N> {
     /// # Panics
     /// If `nvars` is not in `1..=4`.
     pub fn constant(nvars: usize, c: N) -> Self {
-        assert!((1..=MAX_VARS).contains(&nvars), "1 to 4 variables");
+        assert!((1..=MAX_VARS).contains(&nvars), "1 to 6 variables");
         Bernstein {
             nvars,
             degrees: [0; MAX_VARS],
@@ -176,6 +176,41 @@ impl Bernstein<Rational> {
     pub fn convert<M: Number>(&self, prec: Precision) -> Bernstein<M> {
         self.map(|q| M::from_rational(q, prec))
     }
+}
+
+/// The polynomial with variable `axis` fixed at `at`: one variable fewer (the others keep their
+/// order). Exact.
+///
+/// # Panics
+/// If `axis` is not a variable of `p`, or `p` has only one variable.
+///
+/// # Examples
+/// ```
+/// use limn::bernstein::{fix_var, Bernstein};
+/// use limn::number::Rational;
+/// let q = |n: i64| Rational::from(n);
+/// // p(x, y) = x y (Bernstein coefficients 0, 0, 0, 1): at y = 1/2, x / 2.
+/// let p = Bernstein::new(&[1, 1], vec![q(0), q(0), q(0), q(1)]).unwrap();
+/// let f = fix_var(&p, 1, &Rational::from((1, 2)));
+/// assert_eq!(f.eval(&[q(1)]), Rational::from((1, 2)));
+/// ```
+pub fn fix_var(p: &Bernstein<Rational>, axis: usize, at: &Rational) -> Bernstein<Rational> {
+    let n = p.nvars();
+    assert!(
+        axis < n && n >= 2,
+        "a variable of a polynomial in two or more"
+    );
+    let r = p.restrict_rational(axis, at, at);
+    // On the point interval every coefficient along `axis` is the value there: keep index 0.
+    let coeffs: Vec<Rational> = (0..r.coeffs().len())
+        .filter(|&f| r.multi_index(f)[axis] == 0)
+        .map(|f| r.coeffs()[f].clone())
+        .collect();
+    let degrees: Vec<usize> = (0..n)
+        .filter(|&k| k != axis)
+        .map(|k| r.degrees()[k])
+        .collect();
+    Bernstein::new(&degrees, coeffs).expect("one variable fewer")
 }
 
 /// A polynomial in `k` variables as one in `total` variables, its variables placed from

@@ -246,7 +246,10 @@ fn range_sign_is_conservative() {
     assert!(z.range_sign().is_zero() && z.is_zero());
     assert!(Bernstein::<Rational>::new(&[1, 2], vec![q(0); 5]).is_err());
     assert!(Bernstein::<Rational>::new(&[], vec![q(0)]).is_err());
-    assert!(Bernstein::<Rational>::new(&[1; 5], vec![q(0); 32]).is_err());
+    assert!(
+        Bernstein::<Rational>::new(&[1; MAX_VARS + 1], vec![q(0); 1 << (MAX_VARS + 1)]).is_err()
+    );
+    assert!(Bernstein::<Rational>::new(&[1; MAX_VARS], vec![q(0); 1 << MAX_VARS]).is_ok());
 }
 
 #[test]

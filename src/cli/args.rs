@@ -258,6 +258,10 @@ pub(crate) struct HlrArgs {
     /// Output format.
     #[arg(long, value_enum, default_value_t = HlrFormat::Text)]
     pub(crate) format: HlrFormat,
+    /// Do not search the curves where patches that share no corner pass through each other
+    /// (they are then not drawn; faster on models with many overlapping patches)
+    #[arg(long)]
+    pub(crate) no_intersections: bool,
     #[command(flatten)]
     pub(crate) run: RunArgs,
 }

@@ -347,6 +347,7 @@ pub(crate) fn hlr_command(args: HlrArgs, out: &mut dyn Write) -> Result<(), CliE
         model,
         view,
         format,
+        no_intersections,
         run,
     } = args;
     check_run_arguments(&run)?;
@@ -356,6 +357,7 @@ pub(crate) fn hlr_command(args: HlrArgs, out: &mut dyn Write) -> Result<(), CliE
         curve: l.opts.clone(),
         tol: l.tol_abs,
         weld: Some(l.weld),
+        intersections: !no_intersections,
         ..HlrOptions::default()
     };
     let (h, ms) = l.timed(|| hidden_lines(&l.model, &view, &hopts));

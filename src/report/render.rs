@@ -246,7 +246,14 @@ pub fn hlr_svg(model: &Model, view: &View, h: &HiddenLines, title: &str) -> Stri
         },
         Layer {
             style: r##"stroke="#000" stroke-width="1.0""##,
-            paths: pick(&|p| p.qi == Some(0) && p.kind != LineKind::Silhouette),
+            paths: pick(&|p| {
+                p.qi == Some(0) && !matches!(p.kind, LineKind::Silhouette | LineKind::Intersection)
+            }),
+            filled: false,
+        },
+        Layer {
+            style: r##"stroke="#1a55c4" stroke-width="1.4""##,
+            paths: pick(&|p| p.qi == Some(0) && p.kind == LineKind::Intersection),
             filled: false,
         },
         Layer {

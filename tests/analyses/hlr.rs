@@ -6,6 +6,7 @@ use limn::analysis::view::View;
 use limn::analysis::visibility::hlr::{hidden_lines, HiddenLines, HlrOptions, LineKind};
 use limn::model::{Format, Model, WeldTolerance};
 use limn::number::Rational;
+use limn::reason::Reason;
 use limn::surface::RationalPatch;
 use limn::testing::shapes;
 
@@ -178,6 +179,85 @@ fn intersecting_spheres_are_reported() {
     assert!(!h.intersecting_patches.is_empty());
     for [a, b] in &h.intersecting_patches {
         assert!(*a < n && *b >= n, "{a}-{b}");
+    }
+}
+
+/// Two unit spheres with centres 0 and c = (1/2, 1/3, 2/7) meet in a circle of radius
+/// ρ = √(1 − |c|²/4) in the plane x·c = |c|²/2. It is drawn as intersection lines: every drawn
+/// point lies on both spheres, the lines add up to the whole circle (completeness: their
+/// length is the circumference, less only what chords cut short), and the QI of every certified
+/// piece is the analytic ray count at its interior points (soundness), from several directions.
+#[test]
+fn the_intersection_circle_of_two_spheres_is_drawn_with_its_qi() {
+    // (With c_z = 1/5 the circle passes within 5e-4 of both spheres' poles, where the
+    // patches' parameterizations degenerate and the curve solver leaves boxes unresolved.)
+    let c = [(1, 2), (1, 3), (2, 7)];
+    let cf = c.map(|(a, b)| a as f64 / b as f64);
+    let mut patches = shapes::sphere(&q(1));
+    let shift = c.map(Rational::from);
+    let id = shapes::rotation(0, 1, 0);
+    patches.extend(
+        shapes::sphere(&q(1))
+            .iter()
+            .map(|p| shapes::transform(p, &id, &shift)),
+    );
+    let spheres = [Shape::Sphere([0.0; 3], 1.0), Shape::Sphere(cf, 1.0)];
+    let rho = (1.0 - cf.iter().map(|x| x * x).sum::<f64>() / 4.0).sqrt();
+    let circumference = 2.0 * std::f64::consts::PI * rho;
+    for dir in [[1, 2, 3], [-2, 1, -5], [3, -1, 1]] {
+        let h = run(patches.clone(), dir);
+        let what = format!("direction {dir:?}");
+        check(&h, &spheres, dir.map(|x| x as f64), &what);
+        let meets: Vec<_> = h
+            .pieces
+            .iter()
+            .filter(|p| p.kind == LineKind::Intersection)
+            .collect();
+        assert_eq!(h.stats.intersection_unresolved, 0, "{what}");
+        // Every intersection piece's crossings decided; a few ray tests are refused beside the
+        // points where the circle meets a silhouette (the image map is nearly singular
+        // there): measured 250 of 252 pieces certified from (1, 2, 3).
+        let certified = meets.iter().filter(|p| p.certified).count();
+        assert!(
+            meets.iter().all(|p| p.certified
+                || matches!(
+                    p.reason,
+                    Some(Reason::RayNearBoundary { .. }) | Some(Reason::OwnSheet { .. })
+                )),
+            "{what}"
+        );
+        assert!(
+            certified * 100 >= meets.len() * 97,
+            "{what}: {certified} of {}",
+            meets.len()
+        );
+        // Each piece on one patch of each sphere.
+        assert!(meets
+            .iter()
+            .all(|p| p.patch < 8 && p.meets.is_some_and(|m| m >= 8)));
+        let mut length = 0.0;
+        for p in &meets {
+            for x in &p.points {
+                let r1 = x.iter().map(|v| v * v).sum::<f64>();
+                let r2 = (0..3).map(|i| (x[i] - cf[i]).powi(2)).sum::<f64>();
+                assert!(
+                    (r1 - 1.0).abs() < 1e-9 && (r2 - 1.0).abs() < 1e-9,
+                    "{what}: {x:?}"
+                );
+            }
+            for w in p.points.windows(2) {
+                length += (0..3)
+                    .map(|i| (w[1][i] - w[0][i]).powi(2))
+                    .sum::<f64>()
+                    .sqrt();
+            }
+        }
+        assert!(
+            length <= circumference && length > 0.999 * circumference,
+            "{what}: drawn {length}, circumference {circumference}"
+        );
+        // Both visible and hidden stretches of the circle, from every one of these views.
+        assert!(meets.iter().any(|p| p.qi == Some(0)) && meets.iter().any(|p| p.qi > Some(0)));
     }
 }
 
@@ -370,6 +450,7 @@ fn drawing_to_a_tolerance_on_the_sphere() {
                     .min_by(|a, b| to_great_circle(mid, **a).total_cmp(&to_great_circle(mid, **b)))
                     .unwrap(),
                 LineKind::Trim => panic!("an untrimmed sphere has no trimming lines"),
+                LineKind::Intersection => panic!("one sphere has no intersection curves"),
             };
             for w in p.points.windows(2) {
                 for k in 0..=8 {

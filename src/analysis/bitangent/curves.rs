@@ -31,7 +31,7 @@ use crate::solver::precision::{past, Escalations};
 use crate::solver::space_curve::ArcAccept;
 use crate::solver::space_curve::{
     solve_space_curve_excluding, unwarp, unwarp_interval, warp, BoxVerdict, SpaceCurve,
-    SpaceCurveOptions,
+    SpaceCurveOptions, PAIR_WARP,
 };
 use crate::surface::Evaluator;
 use crate::surface::RationalPatch;
@@ -146,16 +146,10 @@ fn plane_set(patches: [usize; 2], l1: &TangentLine, l2: &TangentLine) -> Bitange
     }
 }
 
-/// The Möbius factors of [`warp`] for `(u, v, s, t)`. A patch with itself takes the first two
-/// for both points (the same grid for both, so that a pair and its mirror image fall on the same
-/// grid planes); two patches take all four, so that a curve with `v = t` (two patches
-/// parameterized alike) does not run along the grid's edges.
-const WARP: [(i64, i64); 4] = [(33, 32), (29, 32), (31, 32), (35, 32)];
-
 /// The warp factor of variable `k` (for a patch with itself, the second pair repeats the first).
 fn lambda(same: bool, k: usize) -> f64 {
     let k = if same { k % 2 } else { k };
-    WARP[k].0 as f64 / WARP[k].1 as f64
+    PAIR_WARP[k].0 as f64 / PAIR_WARP[k].1 as f64
 }
 
 /// A cone that contains every normal of a patch: a unit axis and a half-angle below π/2 (the
@@ -277,7 +271,7 @@ pub fn pair_bitangents(
     let (eqs, divided) = bitangent_system(first, second);
     out.divided_sides = divided;
     let lambdas: Vec<Rational> = (0..4)
-        .map(|k| Rational::from(WARP[if same { k % 2 } else { k }]))
+        .map(|k| Rational::from(PAIR_WARP[if same { k % 2 } else { k }]))
         .collect();
     let eqs: Vec<_> = eqs.iter().map(|p| warp(p, &lambdas)).collect();
     let accuracy: Option<[Accuracy; 2]> = options.tolerance.and_then(|_| {

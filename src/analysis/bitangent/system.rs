@@ -19,6 +19,7 @@
 
 use crate::analysis::chords::plane_curve::{div, range_enclosing, restrict_enclosing};
 use crate::analysis::chords::space_curve::deflate_common;
+use crate::analysis::intersection::homogeneous_difference;
 use crate::bernstein::lift;
 use crate::bernstein::Bernstein;
 use crate::geometry::Rect;
@@ -74,9 +75,7 @@ pub fn bitangent_system(
     let hp = first.homogeneous();
     let hq = second.homogeneous();
     let n4 = n.map(|c| lift(&c, 4, 0));
-    let (wp, wq) = (lift(&hp[3], 4, 0), lift(&hq[3], 4, 2));
-    let chord: [Poly; 3] =
-        std::array::from_fn(|k| &(&wp * &lift(&hq[k], 4, 2)) - &(&wq * &lift(&hp[k], 4, 0)));
+    let chord = homogeneous_difference(&hp, &hq);
     let f1 = dot(&n4, &chord);
     let f2 = dot(&n4, &ts.map(|c| lift(&c, 4, 2)));
     let f3 = dot(&n4, &tt.map(|c| lift(&c, 4, 2)));

@@ -26,7 +26,9 @@
 pub use crate::analysis::projection::fix_axis;
 use crate::analysis::projection::{side_point, ImagePolys};
 use crate::analysis::visibility::scene::{ratio_bounds, ImageBounds, Scene};
-use crate::analysis::visibility::sheets::{fold_box, fold_box_around, injective_box, range_on};
+use crate::analysis::visibility::sheets::{
+    fold_box, fold_box_around, injective_box, injective_box_around, range_on,
+};
 use crate::bernstein::lift;
 use crate::bernstein::Bernstein;
 use crate::bernstein::Poly;
@@ -72,6 +74,21 @@ pub enum Sample {
         /// The silhouette function of the patch.
         g: Poly,
     },
+    /// A point where two patches meet (a point of their intersection curve,
+    /// [`crate::analysis::intersection`]): in their parameters `(u, v, s, t)`, variable `axis`
+    /// is `at` and the other three are the only root in `cell` of the curve's three equations.
+    Meet {
+        /// The two patches, `(u, v)` on the first and `(s, t)` on the second.
+        patches: [usize; 2],
+        /// The fixed variable (0 to 3).
+        axis: usize,
+        /// Its value (dyadic).
+        at: Rational,
+        /// The isolating box of the other three variables, in order (dyadic ends).
+        cell: [[Rational; 2]; 3],
+        /// The curve's equations in `(u, v, s, t)` ([`crate::analysis::intersection::intersection_system`]).
+        eqs: std::sync::Arc<[Poly; 3]>,
+    },
 }
 
 /// Budgets of a ray test.
@@ -98,7 +115,7 @@ impl Default for RayOptions {
 /// The point's image polynomials in its own free variables (none for an exact point: then
 /// constants), the box of those variables, and its constraints.
 struct PointSystem {
-    /// Number of free variables (0 or 1).
+    /// Number of free variables (0, 1, or 3 for a point where two patches meet).
     nvars: usize,
     /// Image polynomials in the free variables (constant polynomials in 1 variable if none).
     image: ImagePolys,
@@ -116,6 +133,13 @@ impl Sample {
             Sample::Exact { uv, .. } | Sample::Trim { uv, .. } => {
                 Rect::from_axes(r(&uv[0]), r(&uv[1]))
             }
+            Sample::Meet { .. } => {
+                let [lo, hi] = self.meet_box(0).expect("a point of two patches");
+                Rect::from_axes(
+                    [lo[0].lower_f64(), hi[0].upper_f64()],
+                    [lo[1].lower_f64(), hi[1].upper_f64()],
+                )
+            }
             Sample::Silhouette {
                 axis, at, interval, ..
             } => {
@@ -132,13 +156,34 @@ pub(crate) fn dy(q: &Rational) -> Option<Dyadic> {
 }
 
 impl Sample {
-    /// The patch the sample lies on.
+    /// The patch the sample lies on (the first, for a point where two patches meet).
     pub fn patch(&self) -> usize {
         match self {
             Sample::Exact { patch, .. }
             | Sample::Trim { patch, .. }
             | Sample::Silhouette { patch, .. } => *patch,
+            Sample::Meet { patches, .. } => patches[0],
         }
+    }
+
+    /// For a point where two patches meet: its parameter box `[lo, hi]` on the first
+    /// (`side` 0) or the second (`side` 1) patch.
+    pub fn meet_box(&self, side: usize) -> Option<[[Rational; 2]; 2]> {
+        let Sample::Meet { axis, at, cell, .. } = self else {
+            return None;
+        };
+        let mut others = cell.iter();
+        let all: Vec<[Rational; 2]> = (0..4)
+            .map(|k| {
+                if k == *axis {
+                    [at.clone(), at.clone()]
+                } else {
+                    others.next().expect("three free variables").clone()
+                }
+            })
+            .collect();
+        let (a, b) = (&all[2 * side], &all[2 * side + 1]);
+        Some([[a[0].clone(), b[0].clone()], [a[1].clone(), b[1].clone()]])
     }
 
     fn system(&self, scene: &Scene) -> Option<PointSystem> {
@@ -172,6 +217,35 @@ impl Sample {
                     image: whole,
                     domain: vec![(dy(&interval[0])?, dy(&interval[1])?)],
                     constraints: vec![fix_axis(g, *axis, at)],
+                })
+            }
+            Sample::Meet {
+                axis,
+                at,
+                cell,
+                eqs,
+                ..
+            } => {
+                // The first patch's image in (u, v, s, t), then with the fixed variable set.
+                let fixed = |p: &Poly| crate::bernstein::fix_var(&lift(p, 4, 0), *axis, at);
+                let domain: Option<DyadicBoxN> = cell
+                    .iter()
+                    .map(|c| Some((dy(&c[0])?, dy(&c[1])?)))
+                    .collect();
+                Some(PointSystem {
+                    nvars: 3,
+                    image: ImagePolys {
+                        x: fixed(&im.x),
+                        y: fixed(&im.y),
+                        q: fixed(&im.q),
+                        depth: fixed(&im.depth),
+                        w: fixed(&im.w),
+                    },
+                    domain: domain?,
+                    constraints: eqs
+                        .iter()
+                        .map(|e| crate::bernstein::fix_var(e, *axis, at))
+                        .collect(),
                 })
             }
         }
@@ -305,6 +379,21 @@ pub fn layers(
                     );
                 }
             }
+            Sample::Meet { patches, .. } => {
+                // The point is on both patches: on each, a box around its parameters where
+                // the image map is injective holds no other point with its image
+                // (`proofs/ray-count.md`). A point on a side of either is also on the patch
+                // across: that patch's root at depth zero refuses the sample.
+                for (side, &p) in patches.iter().enumerate() {
+                    if j == p {
+                        let [lo, hi] = sample.meet_box(side).expect("a point of two patches");
+                        exclude.push(
+                            injective_box_around(scene, j, &lo, &hi)
+                                .ok_or(Reason::OwnSheet { patch: j })?,
+                        );
+                    }
+                }
+            }
         }
         // No sheet of the sample on this patch, and no cell of the patch whose image can hold
         // the sample's (in front of it, when only the count is asked): no hit to count
@@ -363,11 +452,22 @@ fn sides_through(uv: &[Rational; 2]) -> Vec<(Edge, Rational)> {
     out
 }
 
+/// The image box and depth range of the point: of its image polynomials on the box of its
+/// free variables (the point lies in it).
 fn point_bounds(ps: &PointSystem) -> ImageBounds {
+    let lo: Vec<Rational> = ps.domain.iter().map(|d| d.0.to_rational()).collect();
+    let hi: Vec<Rational> = ps.domain.iter().map(|d| d.1.to_rational()).collect();
+    let on = |p: &Poly| {
+        if ps.nvars == 0 {
+            p.clone()
+        } else {
+            p.restrict_box_rational(&lo, &hi)
+        }
+    };
     ImageBounds {
-        x: ratio_bounds(&ps.image.x, &ps.image.q),
-        y: ratio_bounds(&ps.image.y, &ps.image.q),
-        depth: ratio_bounds(&ps.image.depth, &ps.image.w),
+        x: ratio_bounds(&on(&ps.image.x), &on(&ps.image.q)),
+        y: ratio_bounds(&on(&ps.image.y), &on(&ps.image.q)),
+        depth: ratio_bounds(&on(&ps.image.depth), &on(&ps.image.w)),
     }
 }
 

@@ -28,7 +28,7 @@ pub mod warp;
 pub use topology::{
     SpaceArc, SpaceBranch, SpaceCrossing, SpaceCurve, SpaceSingularPoint, SpaceUnresolved,
 };
-pub use warp::{unwarp, unwarp_exact, unwarp_interval, warp};
+pub use warp::{unwarp, unwarp_exact, unwarp_interval, warp, PAIR_WARP};
 
 use crate::bernstein::Bernstein;
 use crate::number::Rational;

@@ -4,6 +4,14 @@
 use crate::bernstein::Bernstein;
 use crate::number::{Interval, Number, Rational};
 
+/// The Möbius factors of [`warp`] for a curve in the parameters `(u, v, s, t)` of two patches
+/// (bitangents, intersection curves). A patch with itself takes the first two for both points
+/// (the same grid for both, so that a pair and its mirror image fall on the same grid planes);
+/// two patches take all four, so that a curve with `v = t` (two patches parameterized alike)
+/// or through a simple fraction of both (a plane of symmetry) does not run along the grid's
+/// edges.
+pub const PAIR_WARP: [(i64, i64); 4] = [(33, 32), (29, 32), (31, 32), (35, 32)];
+
 /// The polynomial times the lcm of its coefficients' denominators (a positive integer):
 /// the same zeros, cheaper exact arithmetic.
 pub(crate) fn integral(p: &Bernstein<Rational>) -> Bernstein<Rational> {

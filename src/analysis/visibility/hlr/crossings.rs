@@ -9,6 +9,7 @@
 
 use crate::analysis::contour::curves::Silhouette;
 use crate::analysis::visibility::hlr::cusps::cusp_runs;
+use crate::analysis::visibility::hlr::intersection_lines::shares_corner;
 use crate::analysis::visibility::hlr::lemmas::{
     arc_fold_exclusion, common_monotone, fold_cover, vertex_exclusion,
 };
@@ -25,9 +26,12 @@ use crate::reason::Reason;
 use crate::solver::dyadic::Dyadic;
 use crate::solver::point_in_face::Membership;
 use crate::solver::system::separable::solve_separable;
-use crate::solver::system::{solve_system, DyadicBoxN, SystemRoots};
+use crate::solver::system::{solve_system, DyadicBoxN, SystemOptions, SystemRoots};
 use rayon::prelude::*;
 use std::collections::BTreeSet;
+
+/// How many times the crossing systems' box budget a pair with an intersection segment has.
+const MEET_BUDGET: usize = 8;
 
 /// The cuts and unresolved stretches of every segment, and the pairs of patches found to pass
 /// through each other.
@@ -155,7 +159,7 @@ pub(super) fn crossings(
         for (j, jb) in scene.bounds.iter().enumerate() {
             if sa.on.iter().any(|x| x.0 == j)
                 || sa.touches.contains(&j)
-                || sa.on.iter().any(|x| adjacent(scene, x.0, j))
+                || sa.on.iter().any(|x| shares_corner(scene, x.0, j))
             {
                 continue;
             }
@@ -193,7 +197,18 @@ pub(super) fn crossings(
                 };
                 return (*job, r, Vec::new(), true);
             }
-            let opts = &opts.crossing;
+            // A pair with an intersection curve near its fold points meets the outline in a
+            // near-tangency (its image touches the outline there): a larger box budget.
+            let wide = SystemOptions {
+                max_boxes: opts.crossing.max_boxes * MEET_BUDGET,
+                ..opts.crossing.clone()
+            };
+            let opts = match *job {
+                Job::Pair(a, b) if segments[a].meet.is_some() || segments[b].meet.is_some() => {
+                    &wide
+                }
+                _ => &opts.crossing,
+            };
             let (r, exclude) = match *job {
                 Job::Pair(a, b) => {
                     let system = crossing_system(&segments[a], &segments[b]);
@@ -420,10 +435,4 @@ fn side_point_f64(edge: crate::surface::Edge, t: f64) -> [f64; 2] {
         Edge::U0 => [0.0, t],
         Edge::U1 => [1.0, t],
     }
-}
-
-/// Whether two patches share a corner or an edge.
-fn adjacent(scene: &Scene, a: usize, b: usize) -> bool {
-    let (ca, cb) = (&scene.adjacency.corners[a], &scene.adjacency.corners[b]);
-    ca.iter().any(|x| cb.contains(x))
 }

@@ -5,6 +5,7 @@
 
 use crate::analysis::chords::plane_curve::PatchAccuracy;
 use crate::analysis::contour::drawing::zero_across;
+use crate::analysis::visibility::hlr::intersection_lines::meet_points;
 use crate::analysis::visibility::hlr::lines::Segment;
 use crate::geometry::Rect;
 use crate::number::margin;
@@ -49,6 +50,9 @@ fn line_uv(s: &Segment, t: f64) -> Option<[f64; 2]> {
 /// arc's other coordinate solved in f64): not certified.
 pub(super) fn draw_points(s: &Segment, draw: &DrawPatch, p0: f64, p1: f64, steps: usize) -> Drawn {
     let steps = steps.max(2);
+    if s.meet.is_some() {
+        return meet_points(s, draw, p0, p1, steps);
+    }
     let mut uv = Vec::new();
     let gf = s
         .constraint

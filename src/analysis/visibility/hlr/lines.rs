@@ -79,6 +79,20 @@ pub(super) struct Segment {
     /// Other patches the segment lies on without being a curve of theirs (the faces across a
     /// B-rep edge): not searched for penetrations.
     pub(super) touches: Vec<usize>,
+    /// For an intersection curve of two patches: its variables are `(u, v, s, t)`, the
+    /// parameters of `patch` then of the other ([`Meet`]).
+    pub(super) meet: Option<std::sync::Arc<Meet>>,
+}
+
+/// The curve where two patches meet, as the segments on it see it.
+#[derive(Debug)]
+pub(super) struct Meet {
+    /// The second patch (the segment's `patch` is the first).
+    pub(super) other: usize,
+    /// The three equations in `(u, v, s, t)` ([`crate::analysis::intersection::intersection_system`]).
+    pub(super) eqs: std::sync::Arc<[Poly; 3]>,
+    /// The first patch's image polynomials in `(u, v, s, t)`.
+    pub(super) image: ImagePolys,
 }
 
 /// Where a vertex of the line network is.
@@ -92,6 +106,11 @@ pub(super) enum Key {
     Inner { patch: usize, id: CrossingId },
     /// A point where an arc was cut to make its pieces' images monotone (a unique id).
     Param { id: usize },
+    /// A crossing of an intersection curve inside its pair's domain (pair, crossing).
+    Meet { pair: usize, crossing: usize },
+    /// A point where an intersection curve meets a silhouette of one of its patches (a
+    /// unique id).
+    Fold { id: usize },
     /// The point where piece `k` of loop `lp` of a face starts (and piece `k − 1` ends).
     Joint { face: usize, lp: usize, k: usize },
     /// A point of a loop piece where it crosses a patch side or a silhouette, by its
@@ -123,6 +142,17 @@ impl Key {
             }
             (Key::Inner { patch: a, id: x }, Key::Inner { patch: b, id: y }) => a == b && x == y,
             (Key::Param { id: a }, Key::Param { id: b }) => a == b,
+            (
+                Key::Meet {
+                    pair: a,
+                    crossing: x,
+                },
+                Key::Meet {
+                    pair: b,
+                    crossing: y,
+                },
+            ) => a == b && x == y,
+            (Key::Fold { id: a }, Key::Fold { id: b }) => a == b,
             (
                 Key::Joint {
                     face: f,
@@ -495,6 +525,7 @@ fn silhouette_segments(
                     line: None,
                     curve: None,
                     touches: Vec::new(),
+                    meet: None,
                 };
                 // Along the branch, vertex a comes first.
                 let forward = whole.vertices[0].param[0] <= whole.range[0];
@@ -643,6 +674,21 @@ pub(super) fn narrow_to_curve(g: &Poly, domain: &DyadicBoxN, axis: usize) -> Dya
 /// segment lies on `p` and meets `b`.
 pub(super) fn sub_domain(s: &Segment, p: usize, b: &DyadicBoxN) -> Option<DyadicBoxN> {
     let &(_, edge, rev) = s.on.iter().find(|x| x.0 == p)?;
+    if let Some(m) = &s.meet {
+        // The variables of patch p among (u, v, s, t): the first pair or the second.
+        let offset = if p == s.patch {
+            0
+        } else if p == m.other {
+            2
+        } else {
+            return None;
+        };
+        let mut d = s.domain.clone();
+        for (x, y) in d[offset..offset + 2].iter_mut().zip(b) {
+            *x = (x.0.max(y.0), x.1.min(y.1));
+        }
+        return d.iter().all(|(l, h)| l < h).then_some(d);
+    }
     if let Some(c) = &s.curve {
         return crate::analysis::visibility::hlr::trim_lines::curve_sub_domain(s, c, b);
     }
@@ -856,6 +902,7 @@ fn exact_curve(
         line,
         curve: None,
         touches: Vec::new(),
+        meet: None,
     }
 }
 

@@ -32,6 +32,7 @@
 mod crossings;
 mod cusps;
 mod drawing;
+mod intersection_lines;
 mod lemmas;
 mod lines;
 mod pieces;
@@ -43,6 +44,7 @@ mod trim_lines;
 pub use result::{Behind, HiddenLines, HlrPiece, HlrStats, LineKind, ADJACENT_ASSUMPTION};
 
 use crossings::crossings;
+use intersection_lines::{intersection_lines, silhouette_meets};
 use lines::candidate_lines;
 use pieces::all_pieces;
 use roles::line_roles;
@@ -94,6 +96,10 @@ pub struct HlrOptions {
     /// tests count only points inside them. Off: every surface whole (as the visible
     /// regions still take it).
     pub trims: bool,
+    /// Draw the curves where patches that share no corner pass through each other
+    /// ([`crate::analysis::intersection`]) as lines of kind [`LineKind::Intersection`]. Off:
+    /// they are not drawn (as the visible regions take the drawing).
+    pub intersections: bool,
 }
 
 impl HlrOptions {
@@ -121,6 +127,7 @@ impl Default for HlrOptions {
             behind: false,
             weld: None,
             trims: true,
+            intersections: true,
         }
     }
 }
@@ -197,6 +204,27 @@ fn drawing(model: &Model, view: &View, opts: &HlrOptions) -> Result<HiddenLines,
     stats.trim_segments = trims.segments.len();
     stats.trim_crossings = trims.crossings;
     segments.extend(trims.segments);
+    // 1c. The curves where patches pass through each other.
+    let mut meets_unresolved = Vec::new();
+    if opts.intersections {
+        let first_chain = segments.iter().map(|s| s.chain + 1).max().unwrap_or(0);
+        let boundary = scene.adjacency.edges.len();
+        let meets = intersection_lines(
+            &scene,
+            model,
+            &mut segments[..boundary],
+            first_chain,
+            opts.curve.deadline,
+        );
+        stats.intersection_pairs = meets.pairs;
+        stats.intersection_segments = meets.segments.len();
+        stats.intersection_unresolved = meets.unresolved.len();
+        let first = segments.len();
+        segments.extend(meets.segments);
+        meets_unresolved = meets.unresolved;
+        let range = first..segments.len();
+        stats.intersection_folds = silhouette_meets(&sil, &mut segments, range, &mut next_id);
+    }
     stats.segments = segments.len();
     // 2. Which stretches of them are outline.
     let roles = line_roles(&scene, &segments, opts);
@@ -207,7 +235,7 @@ fn drawing(model: &Model, view: &View, opts: &HlrOptions) -> Result<HiddenLines,
         found.events[k].push(e);
     }
     // 4. The pieces between, their QI, drawn.
-    let pieces = all_pieces(
+    let mut pieces = all_pieces(
         model,
         &scene,
         &sil,
@@ -217,6 +245,7 @@ fn drawing(model: &Model, view: &View, opts: &HlrOptions) -> Result<HiddenLines,
         opts,
         &mut stats,
     );
+    pieces.extend(meets_unresolved);
     let typed: Vec<(Facing, Escalations)> = model
         .patches
         .par_iter()

@@ -9,6 +9,7 @@ use crate::analysis::chords::plane_curve::PatchAccuracy;
 use crate::analysis::contour::curves::Silhouette;
 use crate::analysis::projection::side_point;
 use crate::analysis::visibility::hlr::crossings::Event;
+use crate::analysis::visibility::hlr::intersection_lines::meet_sample;
 use crate::analysis::visibility::hlr::result::HlrStats;
 use crate::analysis::visibility::hlr::result::{Behind, HlrPiece, LineKind};
 use crate::analysis::visibility::hlr::roles::Roles;
@@ -372,6 +373,8 @@ pub(crate) fn draw_piece(
 ) -> HlrPiece {
     let [p0, p1] = st.param;
     let traced = match (opts.tol, acc) {
+        // An intersection curve is drawn without a bound (not traced to a tolerance yet).
+        _ if s.meet.is_some() => None,
         (Some(tol), _) if s.curve.is_some() && !opts.curve.past_deadline() => {
             traced_curve(s, surface, st.from, st.to, tol)
         }
@@ -395,6 +398,7 @@ pub(crate) fn draw_piece(
         kind: s.kind,
         patch: s.patch,
         edge: s.edge,
+        meets: s.meet.as_ref().map(|m| m.other),
         param: [p0, p1],
         certified: reason.is_none(),
         qi,
@@ -489,6 +493,9 @@ pub(crate) fn qi_of(
 }
 /// The sample point of a segment at parameter `c`.
 pub(crate) fn sample_at(s: &Segment, c: &Rational, policy: &mut Policy) -> Option<Sample> {
+    if s.meet.is_some() {
+        return meet_sample(s, c);
+    }
     if let Some(curve) = &s.curve {
         return Some(Sample::Trim {
             patch: s.patch,

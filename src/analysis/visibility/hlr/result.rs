@@ -19,6 +19,8 @@ pub enum LineKind {
     Boundary,
     /// A trimming curve of a face (a B-rep edge is drawn once).
     Trim,
+    /// A curve where two patches pass through each other (on `patch` and another).
+    Intersection,
 }
 /// A piece of a line with constant visibility.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
@@ -30,7 +32,11 @@ pub struct HlrPiece {
     /// The side, for a boundary.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub edge: Option<Edge>,
-    /// Its parameter interval (the side parameter, or the arc's free parameter).
+    /// For an intersection curve: the other patch it lies on.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub meets: Option<usize>,
+    /// Its parameter interval (the side parameter, or the arc's free parameter; for an
+    /// intersection curve, the variable of `(u, v, s, t)` its arc is a graph over).
     pub param: [f64; 2],
     /// The number of surface layers in front of it (`None` if not proven).
     pub qi: Option<usize>,
@@ -113,6 +119,16 @@ pub struct HlrStats {
     pub trim_crossings: usize,
     /// Pieces left out as outside their patch's trimmed faces (proven).
     pub outside_faces: usize,
+    /// Pairs of patches whose intersection curve was searched (no common corner, boxes
+    /// meeting).
+    pub intersection_pairs: usize,
+    /// Segments of intersection curves (certified arcs).
+    pub intersection_segments: usize,
+    /// Boxes of intersection curves the curve solver did not decide (unresolved pieces).
+    pub intersection_unresolved: usize,
+    /// Points where an intersection curve meets a silhouette of one of its patches (vertices
+    /// of both).
+    pub intersection_folds: usize,
 }
 /// A hidden-line drawing.
 #[derive(Clone, Debug, serde::Serialize)]
@@ -127,7 +143,8 @@ pub struct HiddenLines {
     /// What the result assumes without proof.
     pub assumptions: Vec<String>,
     /// Pairs of patches proven to intersect: a line of the first passes through the second
-    /// (an isolated penetration root). Their intersection curve is not a line of the drawing.
+    /// (an isolated penetration root). Their intersection curve is drawn as lines of kind
+    /// [`LineKind::Intersection`] (unless [`HlrOptions::intersections`](super::HlrOptions::intersections) is off).
     pub intersecting_patches: Vec<[usize; 2]>,
     /// The tolerance asked for, in model units.
     pub tolerance: Option<f64>,

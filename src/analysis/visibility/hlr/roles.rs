@@ -49,7 +49,12 @@ pub(super) fn line_roles(scene: &Scene, segments: &[Segment], opts: &HlrOptions)
         })
         .collect();
     let (inner, folds): (Vec<_>, Vec<_>) = roles.into_iter().map(|[i, f]| (i, f)).unzip();
-    let outline = inner.iter().map(|v| v != &[[0.0, 1.0]]).collect();
+    // Outline somewhere unless one stretch inside a cluster covers the whole segment.
+    let outline = inner
+        .iter()
+        .zip(segments)
+        .map(|(v, s)| !v.iter().any(|r| r[0] <= s.range[0] && s.range[1] <= r[1]))
+        .collect();
     Roles {
         inner,
         folds,
@@ -61,12 +66,19 @@ pub(super) fn line_roles(scene: &Scene, segments: &[Segment], opts: &HlrOptions)
 /// provably continues in the image ([`crate::analysis::visibility::fold_edges`]); empty for
 /// other segments.
 fn inside_cluster(scene: &Scene, s: &Segment) -> Vec<[f64; 2]> {
+    // The surface continues across an intersection curve (both patches do): never outline.
+    if s.meet.is_some() {
+        return vec![s.range];
+    }
     orientations_of(scene, s).map_or_else(Vec::new, |o| continuing_stretches(&o, 6))
 }
 
 /// [`crate::analysis::visibility::fold_edges::edge_roles`] of a side shared by two patches
 /// (deep near junctions); none for other segments.
 fn edge_roles_of(scene: &Scene, s: &Segment) -> [Vec<[f64; 2]>; 2] {
+    if s.meet.is_some() {
+        return [vec![s.range], Vec::new()];
+    }
     orientations_of(scene, s).map_or_else(|| [Vec::new(), Vec::new()], |o| edge_roles(&o, 24, 2048))
 }
 

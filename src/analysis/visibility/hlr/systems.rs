@@ -20,6 +20,14 @@ pub(super) fn self_crossing_system(s: &Segment) -> (Vec<Poly>, DyadicBoxN) {
     (eqs, domain)
 }
 
+/// The equations of a segment's variables: the silhouette function of an arc, the three of an
+/// intersection curve, none for a curve of one parameter.
+fn constraints(s: &Segment) -> impl Iterator<Item = &Poly> {
+    s.constraint
+        .iter()
+        .chain(s.meet.iter().flat_map(|m| m.eqs.iter()))
+}
+
 /// The same image point, `x_a / q_a = x_b / q_b` and `y_a / q_a = y_b / q_b`, for groups whose
 /// polynomials start with x, y, q.
 fn image_coincidence() -> Vec<Equation> {
@@ -41,14 +49,17 @@ pub(super) fn crossing_system<'a>(a: &'a Segment, b: &'a Segment) -> SeparableSy
     let group = |s: &'a Segment| Group {
         polys: [&s.image.x, &s.image.y, &s.image.q]
             .into_iter()
-            .chain(s.constraint.as_ref())
+            .chain(constraints(s))
             .collect(),
         domain: &s.domain,
     };
     let mut equations = image_coincidence();
     for (g, s) in [a, b].into_iter().enumerate() {
-        if s.constraint.is_some() {
-            equations.push(Equation::Zero { group: g, poly: 3 });
+        for k in 0..constraints(s).count() {
+            equations.push(Equation::Zero {
+                group: g,
+                poly: 3 + k,
+            });
         }
     }
     SeparableSystem {
@@ -67,14 +78,17 @@ pub(super) fn penetration_system<'a>(
 ) -> SeparableSystem<'a> {
     let polys = |im: &'a ImagePolys| vec![&im.x, &im.y, &im.q, &im.depth, &im.w];
     let mut first = polys(&a.image);
-    first.extend(a.constraint.as_ref());
+    first.extend(constraints(a));
     let mut equations = image_coincidence();
     equations.push(Equation::Ratio {
         first: [3, 4],
         second: [3, 4],
     });
-    if a.constraint.is_some() {
-        equations.push(Equation::Zero { group: 0, poly: 5 });
+    for k in 0..constraints(a).count() {
+        equations.push(Equation::Zero {
+            group: 0,
+            poly: 5 + k,
+        });
     }
     SeparableSystem {
         groups: [

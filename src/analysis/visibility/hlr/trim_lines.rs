@@ -262,6 +262,7 @@ pub(super) fn trim_lines(
                     line: None,
                     curve: Some(c.clone()),
                     touches: touches.clone(),
+                    meet: None,
                 };
                 // 3. Its crossings with the patch's silhouette, cutting the arcs and lines.
                 let unresolved = silhouette_crossings(

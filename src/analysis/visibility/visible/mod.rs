@@ -369,6 +369,8 @@ fn regions(model: &Model, view: &View, opts: &VisibleOptions) -> Result<VisibleR
             weld: Some(weld),
             // The regions are of whole surfaces still: so are their occluders.
             trims: false,
+            // The visible regions are not yet bounded by intersection curves.
+            intersections: false,
             ..HlrOptions::default()
         };
         let h = hidden_lines(model, view, &hopts)?;
