@@ -53,7 +53,7 @@ pub(crate) fn homogeneous_difference(hp: &[Poly; 4], hq: &[Poly; 4]) -> [Poly; 3
 }
 
 /// The curve where two patches meet, solved in Möbius-warped parameters
-/// ([`crate::solver::space_curve::warp`] with the factors [`PAIR_WARP`]: a curve through a
+/// ([`crate::solver::space_curve::warp()`] with the factors [`PAIR_WARP`]: a curve through a
 /// simple fraction of both patches, as on a plane of symmetry, would otherwise run along the
 /// edges of the subdivision grid and be left unresolved). The warp is increasing in each
 /// variable and fixes 0 and 1, so the curve's topology and its ends on the domain's sides are
