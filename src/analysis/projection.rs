@@ -185,7 +185,7 @@ impl ImagePolys {
     }
 
     /// The same map applied to every polynomial.
-    fn map(&self, r: impl Fn(&Poly) -> Poly) -> ImagePolys {
+    pub(crate) fn map(&self, r: impl Fn(&Poly) -> Poly) -> ImagePolys {
         ImagePolys {
             x: r(&self.x),
             y: r(&self.y),

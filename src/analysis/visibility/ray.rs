@@ -86,8 +86,9 @@ pub enum Sample {
         at: Rational,
         /// The isolating box of the other three variables, in order (dyadic ends).
         cell: [[Rational; 2]; 3],
-        /// The curve's equations in `(u, v, s, t)` ([`crate::analysis::intersection::intersection_system`]).
-        eqs: std::sync::Arc<[Poly; 3]>,
+        /// The curve's equations ([`crate::analysis::intersection::intersection_system`])
+        /// with variable `axis` at `at`: in the other three, in order.
+        fixed: std::sync::Arc<Vec<Poly>>,
     },
 }
 
@@ -189,21 +190,12 @@ impl Sample {
     fn system(&self, scene: &Scene) -> Option<PointSystem> {
         let im = &scene.images[self.patch()];
         match self {
-            Sample::Exact { uv, .. } | Sample::Trim { uv, .. } => {
-                let c = |p: &Poly| Bernstein::constant(1, p.eval(uv));
-                Some(PointSystem {
-                    nvars: 0,
-                    image: ImagePolys {
-                        x: c(&im.x),
-                        y: c(&im.y),
-                        q: c(&im.q),
-                        depth: c(&im.depth),
-                        w: c(&im.w),
-                    },
-                    domain: Vec::new(),
-                    constraints: Vec::new(),
-                })
-            }
+            Sample::Exact { uv, .. } | Sample::Trim { uv, .. } => Some(PointSystem {
+                nvars: 0,
+                image: im.map(|p| Bernstein::constant(1, p.eval(uv))),
+                domain: Vec::new(),
+                constraints: Vec::new(),
+            }),
             Sample::Silhouette {
                 axis,
                 at,
@@ -223,29 +215,25 @@ impl Sample {
                 axis,
                 at,
                 cell,
-                eqs,
+                fixed,
                 ..
             } => {
-                // The first patch's image in (u, v, s, t), then with the fixed variable set.
-                let fixed = |p: &Poly| crate::bernstein::fix_var(&lift(p, 4, 0), *axis, at);
                 let domain: Option<DyadicBoxN> = cell
                     .iter()
                     .map(|c| Some((dy(&c[0])?, dy(&c[1])?)))
                     .collect();
                 Some(PointSystem {
                     nvars: 3,
-                    image: ImagePolys {
-                        x: fixed(&im.x),
-                        y: fixed(&im.y),
-                        q: fixed(&im.q),
-                        depth: fixed(&im.depth),
-                        w: fixed(&im.w),
-                    },
+                    // The first patch's image in the three free variables.
+                    image: im.map(|p| {
+                        if *axis < 2 {
+                            lift(&crate::bernstein::fix_var(p, *axis, at), 3, 0)
+                        } else {
+                            lift(p, 3, 0)
+                        }
+                    }),
                     domain: domain?,
-                    constraints: eqs
-                        .iter()
-                        .map(|e| crate::bernstein::fix_var(e, *axis, at))
-                        .collect(),
+                    constraints: fixed.to_vec(),
                 })
             }
         }

@@ -209,14 +209,7 @@ pub(super) fn intersection_lines(
 
 /// The first patch's image polynomials in `(u, v, s, t)`.
 fn lifted(im: &ImagePolys) -> ImagePolys {
-    let l = |p: &Poly| lift(p, 4, 0);
-    ImagePolys {
-        x: l(&im.x),
-        y: l(&im.y),
-        q: l(&im.q),
-        depth: l(&im.depth),
-        w: l(&im.w),
-    }
+    im.map(|p| lift(p, 4, 0))
 }
 
 /// The vertex at an end of an arc: on a side of either patch (the domain's boundary), a vertex
@@ -360,7 +353,7 @@ pub(super) fn meet_sample(s: &Segment, c: &Rational) -> Option<Sample> {
         axis: s.axis,
         at: c.clone(),
         cell,
-        eqs: m.eqs.clone(),
+        fixed: Arc::new(eqs),
     })
 }
 

@@ -354,14 +354,7 @@ fn compose_image(im: &ImagePolys, c: &[Poly; 3]) -> ImagePolys {
             *d = (*d).max(*e);
         }
     }
-    let f = |p: &Poly| compose_homogeneous(&p.elevate_to(&deg), k);
-    ImagePolys {
-        x: f(&im.x),
-        y: f(&im.y),
-        q: f(&im.q),
-        depth: f(&im.depth),
-        w: f(&im.w),
-    }
+    im.map(|p| compose_homogeneous(&p.elevate_to(&deg), k))
 }
 
 /// The crossings of a trimming segment with the silhouette of its patch: vertices on it and
