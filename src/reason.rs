@@ -147,6 +147,9 @@ pub enum Reason {
         /// The solver's reason.
         why: Box<Reason>,
     },
+    /// A piece of an intersection curve solved past a side of its patches' squares whose
+    /// crossing with that side, or whether it lies inside, was not decided.
+    IntersectionClip,
     /// The line's image is not proven free of self-crossings (a cusp of the outline?).
     OutlineCusp,
     /// Where the line crosses a line of `patches[0]` (or of `patches[1]`) is not isolated.
@@ -435,6 +438,9 @@ impl fmt::Display for Reason {
             IntersectionUnresolved { patches: [p, q], why } => write!(
                 f,
                 "where patches {p} and {q} pass through each other is not resolved here: {why}"
+            ),
+            IntersectionClip => f.write_str(
+                "where the intersection curve crosses a side of its patches, solved past that side, is not decided",
             ),
             OutlineCusp => f.write_str(
                 "its image is not proven free of self-crossings (a cusp of the outline?)",

@@ -261,6 +261,52 @@ fn the_intersection_circle_of_two_spheres_is_drawn_with_its_qi() {
     }
 }
 
+/// Two planes whose line of intersection leaves both squares through a corner of their
+/// domain at each end: z = x − 1/2 and z = y over the unit square meet on y = x − 1/2, from
+/// (1/2, 0, 0), on the sides v = 0 and t = 0 at once, to (1, 1/2, 1/2), on u = 1 and s = 1.
+/// The curve is solved past those sides and clipped to the squares: one straight line of
+/// length √3/2, certified, every drawn point on it.
+#[test]
+fn an_intersection_through_corners_of_the_domain_is_clipped_to_the_squares() {
+    let h = |a: i64, b: i64| Rational::from((a, b));
+    let first = shapes::graph(
+        &[(0, 0, h(-1, 2)), (1, 0, q(1))],
+        [q(0), q(1)],
+        [q(0), q(1)],
+    );
+    let second = shapes::graph(&[(0, 1, q(1))], [q(0), q(1)], [q(0), q(1)]);
+    for dir in [[1, 2, 3], [-2, 1, -5]] {
+        let d = run(vec![first.clone(), second.clone()], dir);
+        let meets: Vec<_> = d
+            .pieces
+            .iter()
+            .filter(|p| p.kind == LineKind::Intersection)
+            .collect();
+        assert!(
+            !meets.is_empty() && meets.iter().all(|p| p.certified),
+            "{dir:?}"
+        );
+        assert_eq!(d.stats.intersection_unresolved, 0, "{dir:?}");
+        let mut length = 0.0;
+        for p in &meets {
+            for x in &p.points {
+                assert!((x[1] - (x[0] - 0.5)).abs() < 1e-9 && (x[2] - x[1]).abs() < 1e-9);
+            }
+            for w in p.points.windows(2) {
+                length += (0..3)
+                    .map(|i| (w[1][i] - w[0][i]).powi(2))
+                    .sum::<f64>()
+                    .sqrt();
+            }
+        }
+        let want = 0.75f64.sqrt();
+        assert!(
+            (length - want).abs() < 1e-6,
+            "{dir:?}: {length} against {want}"
+        );
+    }
+}
+
 #[test]
 fn two_spheres_in_perspective() {
     let shapes_ = [

@@ -13,7 +13,7 @@
 
 use crate::bernstein::lift;
 use crate::bernstein::Poly;
-use crate::number::Rational;
+use crate::number::{Interval, Number, Rational};
 use crate::solver::space_curve::{
     solve_space_curve, unwarp, unwarp_interval, warp, SpaceCurve, SpaceCurveOptions, PAIR_WARP,
 };
@@ -65,20 +65,48 @@ pub struct PairIntersection {
     pub curve: SpaceCurve,
     /// The warp factor of each variable.
     pub lambda: [f64; 4],
+    /// Per variable, the interval of the patch's parameter that the solver's `[0, 1]` stands
+    /// for: `[0, 1]`, or reaching 1/64 (the first patch) or 3/128 (the second) past a side
+    /// where the curve was solved beyond it (see [`pair_intersection`]). Exact in f64.
+    pub span: [[f64; 2]; 4],
+    /// The equations in the span's unit coordinates, before the warp.
+    pub eqs: [Poly; 3],
 }
 
 impl PairIntersection {
-    /// A box of the warped variables mapped to the patches' parameters (rounded outward).
+    /// A box of the solver's variables mapped to the patches' parameters (rounded outward;
+    /// beyond `[0, 1]` where the span extends past a side).
     pub fn unwarp_box(&self, b: &[[f64; 2]]) -> Vec<[f64; 2]> {
         b.iter()
-            .zip(self.lambda)
-            .map(|(x, l)| unwarp_interval(*x, l))
+            .enumerate()
+            .map(|(k, x)| self.from_unit(k, unwarp_interval(*x, self.lambda[k])))
             .collect()
+    }
+
+    /// An interval of the span's unit coordinate `k` in the patch's parameter (outward).
+    pub fn from_unit(&self, k: usize, y: [f64; 2]) -> [f64; 2] {
+        let [lo, hi] = self.span[k];
+        if lo == 0.0 && hi == 1.0 {
+            return y;
+        }
+        let (l, w) = (Interval::point(lo), Interval::point(hi - lo));
+        let a = l.add(&w.mul(&Interval::point(y[0])));
+        let b = l.add(&w.mul(&Interval::point(y[1])));
+        [a.lo(), b.hi()]
+    }
+
+    /// The unit coordinate of the patch parameter `x` of variable `k`, exactly.
+    pub fn to_unit(&self, k: usize, x: &Rational) -> Rational {
+        let [lo, hi] = self.span[k].map(|e| Rational::from_f64(e).unwrap_or_default());
+        (x - lo.clone()) / (hi - lo)
     }
 
     /// A point of the warped variables mapped to the patches' parameters (f64, for drawing).
     pub fn unwarp_point(&self, x: &[f64]) -> [f64; 4] {
-        std::array::from_fn(|k| unwarp(x[k], self.lambda[k]))
+        std::array::from_fn(|k| {
+            let [lo, hi] = self.span[k];
+            lo + (hi - lo) * unwarp(x[k], self.lambda[k])
+        })
     }
 
     /// Certified topology: every box decided and every branch complete.
@@ -114,14 +142,76 @@ pub fn pair_intersection(
     second: &RationalPatch,
     opts: &SpaceCurveOptions,
 ) -> PairIntersection {
+    let eqs = intersection_system(first, second);
+    let unit = [[0.0, 1.0]; 4];
+    let whole = solve_on(&eqs, unit, opts);
+    // Boxes left undecided where the curve leaves through two sides at once (an edge of the
+    // domain: both patches' seams meet on the curve, as on a plane of symmetry): solved again
+    // on a domain reaching past those sides, where that point is inside, if both
+    // weights stay positive there. The caller clips the arcs to the patches' squares.
+    let mut span = unit;
+    for u in &whole.curve.unresolved {
+        let sides: Vec<(usize, bool)> = (0..4)
+            .flat_map(|k| [(k, u.cell[k][0] <= 0.0), (k, u.cell[k][1] >= 1.0)])
+            .enumerate()
+            .filter(|(_, (_, on))| *on)
+            .map(|(i, (k, _))| (k, i % 2 == 1))
+            .collect();
+        if sides.len() >= 2 {
+            for (k, high) in sides {
+                // Past the first patch's sides by 1/64, the second's by 3/128: a curve along
+                // which the two patches' parameters agree (v = t) leaves the wider domain
+                // through one side, not again through an edge.
+                let d = if k < 2 { 1.0 / 64.0 } else { 3.0 / 128.0 };
+                span[k][usize::from(high)] = if high { 1.0 + d } else { -d };
+            }
+        }
+    }
+    if span == unit {
+        return whole;
+    }
+    let weights = [first, second].map(|p| p.homogeneous()[3].clone());
+    let positive = (0..2).all(|side| {
+        let w = (0..2).fold(weights[side].clone(), |w, a| {
+            restrict_span(&w, a, span[2 * side + a])
+        });
+        w.coeffs()
+            .iter()
+            .all(|c| c.cmp0() == std::cmp::Ordering::Greater)
+    });
+    if !positive {
+        return whole;
+    }
+    let wider = solve_on(&eqs, span, opts);
+    if wider.curve.unresolved.len() < whole.curve.unresolved.len() {
+        wider
+    } else {
+        whole
+    }
+}
+
+/// `p` with variable `k` reparameterized from `[0, 1]` to `span` (exact: Bernstein
+/// extrapolation past a side).
+fn restrict_span(p: &Poly, k: usize, span: [f64; 2]) -> Poly {
+    if span == [0.0, 1.0] {
+        return p.clone();
+    }
+    let r = |x: f64| Rational::from_f64(x).unwrap_or_default();
+    p.restrict_rational(k, &r(span[0]), &r(span[1]))
+}
+
+/// The curve of `eqs` solved with each variable's `[0, 1]` standing for `span`, warped.
+fn solve_on(eqs: &[Poly; 3], span: [[f64; 2]; 4], opts: &SpaceCurveOptions) -> PairIntersection {
     let lambdas: Vec<Rational> = PAIR_WARP.iter().map(|&l| Rational::from(l)).collect();
-    let eqs: Vec<Poly> = intersection_system(first, second)
-        .iter()
-        .map(|p| warp(p, &lambdas))
-        .collect();
+    let on_span: [Poly; 3] = eqs
+        .clone()
+        .map(|e| (0..4).fold(e, |e, k| restrict_span(&e, k, span[k])));
+    let warped: Vec<Poly> = on_span.iter().map(|p| warp(p, &lambdas)).collect();
     PairIntersection {
-        curve: solve_space_curve(&eqs, opts),
+        curve: solve_space_curve(&warped, opts),
         lambda: PAIR_WARP.map(|(a, b)| a as f64 / b as f64),
+        span,
+        eqs: on_span,
     }
 }
 

@@ -22,12 +22,12 @@ use crate::analysis::visibility::hlr::lines::{
 use crate::analysis::visibility::hlr::result::{HlrPiece, LineKind};
 use crate::analysis::visibility::ray::Sample;
 use crate::analysis::visibility::scene::Scene;
-use crate::bernstein::{lift, Poly};
+use crate::bernstein::{fix_var, lift, Poly};
 use crate::model::Model;
-use crate::number::{Precision, Rational};
+use crate::number::{Number, Precision, Rational};
 use crate::reason::Reason;
 use crate::solver::dyadic::Dyadic;
-use crate::solver::space_curve::{SpaceCrossing, SpaceCurveOptions};
+use crate::solver::space_curve::{unwarp_interval, SpaceCrossing, SpaceCurveOptions};
 use crate::solver::system::{solve_system, DyadicBoxN, SystemOptions};
 use crate::surface::{DrawPatch, Edge};
 use rayon::prelude::*;
@@ -107,12 +107,11 @@ pub(super) fn intersection_lines(
         let curve = &pair.curve;
         let draw = DrawPatch::new(&model.patches[*p].surface);
         for u in &curve.unresolved {
-            out.unresolved.push(unresolved_piece(
-                [*p, *q],
-                &pair.unwarp_box(&u.cell),
-                u.reason.clone(),
-                &draw,
-            ));
+            let cell = pair.unwarp_box(&u.cell);
+            if !outside_squares(&cell) {
+                out.unresolved
+                    .push(unresolved_piece([*p, *q], &cell, u.reason.clone(), &draw));
+            }
         }
         if curve.arcs.is_empty() {
             continue;
@@ -150,56 +149,79 @@ pub(super) fn intersection_lines(
                     continue;
                 }
                 let axis = arc.monotone_in;
-                let range = [
-                    ends[0][axis][0].min(ends[1][axis][0]),
-                    ends[0][axis][1].max(ends[1][axis][1]),
-                ];
-                // The arc's box, narrowed along its variable to its ends' extent (a graph
-                // over that variable lies within it).
-                let mut cell = pair.unwarp_box(&arc.cell);
-                cell[axis] = [cell[axis][0].max(range[0]), cell[axis][1].min(range[1])];
-                let domain: DyadicBoxN = cell
-                    .iter()
-                    .map(|x| (dyadic_below(x[0]), dyadic_above(x[1])))
-                    .collect();
-                let vertices = [a, b]
-                    .iter()
-                    .zip(&ends)
-                    .map(|(&c, e)| {
-                        end_vertex(
-                            scene,
-                            boundary,
-                            &curve.crossings[c],
-                            e,
-                            [*p, *q],
-                            index,
-                            c,
-                            axis,
-                        )
-                    })
-                    .collect();
-                let image = meet.image.clone();
-                out.segments.push(Segment {
-                    kind: LineKind::Intersection,
-                    patch: *p,
-                    edge: None,
-                    chain,
-                    order: k,
-                    bounds: bounds_on(&image, &domain),
-                    image,
-                    constraint: None,
-                    domain,
-                    axis,
-                    range,
-                    tangent: [(); 2].map(|()| Poly::constant(4, Rational::new())),
-                    monotone: None,
-                    vertices,
-                    on: vec![(*p, None, false), (*q, None, false)],
-                    line: None,
-                    curve: None,
-                    touches: Vec::new(),
-                    meet: Some(meet.clone()),
-                });
+                let cell = pair.unwarp_box(&arc.cell);
+                if outside_squares(&cell) {
+                    continue;
+                }
+                let end_at = |c: usize, e: &Vec<[f64; 2]>| End {
+                    at: e.clone(),
+                    face: face_of(&pair, &curve.crossings[c]),
+                    key: Key::Meet {
+                        pair: index,
+                        crossing: c,
+                    },
+                };
+                let whole = [end_at(a, &ends[0]), end_at(b, &ends[1])];
+                let pieces = if cell.iter().all(|x| x[0] >= 0.0 && x[1] <= 1.0) {
+                    vec![whole]
+                } else {
+                    // Solved past a side: the stretches of the arc inside both squares.
+                    match clip_arc(&pair, &arc.cell, axis, whole) {
+                        Some(pieces) => pieces,
+                        None => {
+                            out.unresolved.push(unresolved_piece(
+                                [*p, *q],
+                                &cell,
+                                Reason::IntersectionClip,
+                                &draw,
+                            ));
+                            continue;
+                        }
+                    }
+                };
+                for [e0, e1] in pieces {
+                    let range = [
+                        e0.at[axis][0].min(e1.at[axis][0]),
+                        e0.at[axis][1].max(e1.at[axis][1]),
+                    ];
+                    // The arc's box inside the squares, narrowed along its variable to the
+                    // stretch's extent (a graph over that variable lies within it).
+                    let mut c: Vec<[f64; 2]> = cell
+                        .iter()
+                        .map(|x| [x[0].max(0.0), x[1].min(1.0)])
+                        .collect();
+                    c[axis] = [c[axis][0].max(range[0]), c[axis][1].min(range[1])];
+                    let domain: DyadicBoxN = c
+                        .iter()
+                        .map(|x| (dyadic_below(x[0]), dyadic_above(x[1])))
+                        .collect();
+                    let vertices = [e0, e1]
+                        .into_iter()
+                        .map(|e| end_vertex(scene, boundary, e, [*p, *q], axis))
+                        .collect();
+                    let image = meet.image.clone();
+                    out.segments.push(Segment {
+                        kind: LineKind::Intersection,
+                        patch: *p,
+                        edge: None,
+                        chain,
+                        order: k,
+                        bounds: bounds_on(&image, &domain),
+                        image,
+                        constraint: None,
+                        domain,
+                        axis,
+                        range,
+                        tangent: [(); 2].map(|()| Poly::constant(4, Rational::new())),
+                        monotone: None,
+                        vertices,
+                        on: vec![(*p, None, false), (*q, None, false)],
+                        line: None,
+                        curve: None,
+                        touches: Vec::new(),
+                        meet: Some(meet.clone()),
+                    });
+                }
             }
             chain += 1;
         }
@@ -212,34 +234,174 @@ fn lifted(im: &ImagePolys) -> ImagePolys {
     im.map(|p| lift(p, 4, 0))
 }
 
-/// The vertex at an end of an arc: on a side of either patch (the domain's boundary), a vertex
-/// of that side too (the side passes through the other patch there); inside, the crossing.
-#[allow(clippy::too_many_arguments)]
+/// An end of a stretch of an intersection curve: its box in `(u, v, s, t)`, the side of a
+/// patch it lies on (variable, at 1), and its key if it lies on none.
+#[derive(Clone, Debug)]
+struct End {
+    at: Vec<[f64; 2]>,
+    face: Option<(usize, bool)>,
+    key: Key,
+}
+
+/// Whether a box of `(u, v, s, t)` lies outside the patches' squares (beyond a side, or on it).
+fn outside_squares(cell: &[[f64; 2]]) -> bool {
+    cell.iter().any(|x| x[1] <= 0.0 || x[0] >= 1.0)
+}
+
+/// The side of a patch that a crossing on the solver's boundary lies on, if that boundary is a
+/// side (not the edge of a domain extended past it).
+fn face_of(pair: &PairIntersection, c: &SpaceCrossing) -> Option<(usize, bool)> {
+    if !c.on_boundary {
+        return None;
+    }
+    let one = c.at == Dyadic::ONE;
+    let [lo, hi] = pair.span[c.axis];
+    let side = if one { hi == 1.0 } else { lo == 0.0 };
+    side.then_some((c.axis, one))
+}
+
+/// The stretches of an arc (in the solver's box `cell`, a graph over variable `axis`) inside
+/// both patches' squares, where its box reaches past a side: the arc is cut where it crosses
+/// each side's hyperplane (roots of the three equations with that variable fixed, in the
+/// span's coordinates, where the point is inside the solver's domain), and each stretch
+/// between cuts is in or out as a whole, decided at its middle. `None` if a root or a middle
+/// is not decided.
+fn clip_arc(
+    pair: &PairIntersection,
+    cell: &[[f64; 2]],
+    axis: usize,
+    ends: [End; 2],
+) -> Option<Vec<[End; 2]>> {
+    let unit: Vec<[f64; 2]> = (0..4)
+        .map(|k| unwarp_interval(cell[k], pair.lambda[k]))
+        .collect();
+    let box_of = |skip: usize| -> Option<DyadicBoxN> {
+        (0..4)
+            .filter(|&k| k != skip)
+            .map(|k| Some((dyadic_below(unit[k][0]), dyadic_above(unit[k][1]))))
+            .collect()
+    };
+    let opts = SystemOptions {
+        max_depth: 30,
+        max_boxes: 2_000,
+        refine_width: 1e-12,
+        ..SystemOptions::default()
+    };
+    // The points of the curve in the box on the hyperplane x_k = c, in the patches' parameters.
+    let slice = |k: usize, c: &Rational| -> Option<Vec<Vec<[f64; 2]>>> {
+        let g = pair.to_unit(k, c);
+        let eqs: Vec<Poly> = pair.eqs.iter().map(|e| fix_var(e, k, &g)).collect();
+        let r = solve_system(&eqs, &[], &box_of(k)?, &opts);
+        if !r.unresolved.is_empty() || r.roots.iter().any(|x| !x.inside) {
+            return None;
+        }
+        let gf = [g.lower_f64(), g.upper_f64()];
+        Some(
+            r.roots
+                .iter()
+                .map(|x| {
+                    let mut e = x.enclosure.clone();
+                    e.insert(k, gf);
+                    (0..4).map(|v| pair.from_unit(v, e[v])).collect()
+                })
+                .collect(),
+        )
+    };
+    let lo = ends[0].at[axis][0].min(ends[1].at[axis][0]);
+    let hi = ends[0].at[axis][1].max(ends[1].at[axis][1]);
+    let mut cuts: Vec<End> = Vec::new();
+    for (k, y) in unit.iter().enumerate() {
+        let x = pair.from_unit(k, *y);
+        for (c, one) in [(0.0, false), (1.0, true)] {
+            if x[0] < c && c < x[1] {
+                for at in slice(k, &Rational::from(i32::from(one)))? {
+                    if at[axis][1] >= lo && at[axis][0] <= hi {
+                        cuts.push(End {
+                            at,
+                            face: Some((k, one)),
+                            key: Key::Meet {
+                                pair: usize::MAX,
+                                crossing: 0,
+                            },
+                        });
+                    }
+                }
+            }
+        }
+    }
+    let mut points: Vec<End> = ends.to_vec();
+    points.extend(cuts);
+    points.sort_by(|a, b| {
+        (a.at[axis][0] + a.at[axis][1]).total_cmp(&(b.at[axis][0] + b.at[axis][1]))
+    });
+    // Cuts whose boxes overlap (the curve leaving through two sides at one point, an edge of
+    // the squares) are one cut, its box their hull: a stretch between two such points, were
+    // they distinct, lies in that box and is neither drawn nor decided, as within any cut's
+    // enclosure.
+    let mut merged: Vec<End> = Vec::new();
+    for e in points {
+        match merged.last_mut() {
+            Some(last)
+                if (0..4).all(|k| last.at[k][0] <= e.at[k][1] && e.at[k][0] <= last.at[k][1]) =>
+            {
+                for k in 0..4 {
+                    last.at[k] = [last.at[k][0].min(e.at[k][0]), last.at[k][1].max(e.at[k][1])];
+                }
+                last.face = last.face.or(e.face);
+            }
+            _ => merged.push(e),
+        }
+    }
+    let mut out = Vec::new();
+    for w in merged.windows(2) {
+        let (a, b) = (&w[0], &w[1]);
+        if a.at[axis][1] >= b.at[axis][0] {
+            return None; // two cuts not apart along the arc
+        }
+        // The middle of the stretch: the only point of the curve in the box on its slice.
+        if b.at[axis][1] <= 0.0 || a.at[axis][0] >= 1.0 {
+            continue; // beyond a side in the arc's own variable
+        }
+        let m = Rational::from_f64(0.5 * (a.at[axis][1] + b.at[axis][0]))?;
+        let at = slice(axis, &m)?;
+        let [mid] = at.as_slice() else {
+            return None;
+        };
+        let inside = mid.iter().all(|x| x[0] > 0.0 && x[1] < 1.0);
+        let outside = mid.iter().any(|x| x[1] < 0.0 || x[0] > 1.0);
+        if inside {
+            out.push([a.clone(), b.clone()]);
+        } else if !outside {
+            return None;
+        }
+    }
+    Some(out)
+}
+
+/// The vertex at an end of a stretch: on a side of either patch, a vertex of that side too
+/// (the side passes through the other patch there); inside, the crossing.
 fn end_vertex(
     scene: &Scene,
     boundary: &mut [Segment],
-    c: &SpaceCrossing,
-    e: &[[f64; 2]],
+    end: End,
     patches: [usize; 2],
-    pair: usize,
-    crossing: usize,
     axis: usize,
 ) -> Vertex {
+    let e = &end.at;
     let boxes: Vec<(usize, [Rational; 2], [Rational; 2])> = (0..2)
         .map(|side| {
             let (a, b) = (e[2 * side], e[2 * side + 1]);
             (
                 patches[side],
-                [rat(a[0]), rat(b[0])],
-                [rat(a[1]), rat(b[1])],
+                [rat(a[0].max(0.0)), rat(b[0].max(0.0))],
+                [rat(a[1].min(1.0)), rat(b[1].min(1.0))],
             )
         })
         .collect();
     let param = e[axis];
-    if c.on_boundary {
-        let side = c.axis / 2;
-        let own = c.axis % 2;
-        let one = c.at == Dyadic::ONE;
+    if let Some((k, one)) = end.face {
+        let side = k / 2;
+        let own = k % 2;
         let edge = match (own, one) {
             (0, false) => Edge::U0,
             (0, true) => Edge::U1,
@@ -247,6 +409,7 @@ fn end_vertex(
             (_, true) => Edge::V1,
         };
         let along = e[2 * side + 1 - own];
+        let along = [along[0].max(0.0), along[1].min(1.0)];
         if let Some((class, rev)) = class_of(scene, patches[side], edge) {
             let t = if rev {
                 [1.0 - along[1], 1.0 - along[0]]
@@ -267,7 +430,7 @@ fn end_vertex(
         }
     }
     Vertex {
-        key: Key::Meet { pair, crossing },
+        key: end.key,
         param,
         uv: boxes,
     }
