@@ -169,10 +169,16 @@ impl HlrReport {
                 .iter()
                 .map(|[a, b]| format!("{a}-{b}"))
                 .collect();
-            t += &format!(
-                "intersecting patches (their intersection curves are not drawn): {}\n",
-                pairs.join(", ")
-            );
+            let drawn = count(&|p| p.kind == LineKind::Intersection);
+            let how = if self.stats.intersection_pairs == 0 {
+                "their intersection curves are not drawn".to_string()
+            } else {
+                format!(
+                    "their intersection curves drawn: {drawn} pieces, {} certified",
+                    count(&|p| p.kind == LineKind::Intersection && p.certified)
+                )
+            };
+            t += &format!("intersecting patches ({how}): {}\n", pairs.join(", "));
         }
         for a in &self.assumptions {
             t += &format!("assumed: {a}\n");

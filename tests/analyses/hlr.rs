@@ -305,6 +305,21 @@ fn an_intersection_through_corners_of_the_domain_is_clipped_to_the_squares() {
             "{dir:?}: {length} against {want}"
         );
     }
+    // With clusters off an intersection curve is still no outline: the same pieces' QIs.
+    let model = Model::from_patches(Format::Json, vec![first, second]);
+    let view = View::Direction([1, 2, 3].map(Rational::from));
+    let opts = HlrOptions {
+        clusters: false,
+        ..HlrOptions::default()
+    };
+    let off = hidden_lines(&model, &view, &opts.with_weld(WeldTolerance::Exact)).unwrap();
+    let mut meets = off
+        .pieces
+        .iter()
+        .filter(|p| p.kind == LineKind::Intersection)
+        .peekable();
+    assert!(meets.peek().is_some());
+    assert!(meets.all(|p| p.certified && p.outline == Some(false)));
 }
 
 #[test]

@@ -38,11 +38,14 @@ impl Roles {
     }
 }
 
-/// The roles of every segment's stretches; with clusters off, every stretch is outline.
+/// The roles of every segment's stretches; with clusters off, every stretch of a side or a
+/// silhouette is outline. An intersection curve never is (the surface continues across it:
+/// `proofs/hidden-lines.md`, claim I1).
 pub(super) fn line_roles(scene: &Scene, segments: &[Segment], opts: &HlrOptions) -> Roles {
     let roles: Vec<[Vec<[f64; 2]>; 2]> = segments
         .par_iter()
         .map(|s| match (opts.clusters, opts.behind) {
+            _ if s.meet.is_some() => [vec![s.range], Vec::new()],
             (false, _) => [Vec::new(), Vec::new()],
             (true, false) => [inside_cluster(scene, s), Vec::new()],
             (true, true) => edge_roles_of(scene, s),
@@ -66,19 +69,12 @@ pub(super) fn line_roles(scene: &Scene, segments: &[Segment], opts: &HlrOptions)
 /// provably continues in the image ([`crate::analysis::visibility::fold_edges`]); empty for
 /// other segments.
 fn inside_cluster(scene: &Scene, s: &Segment) -> Vec<[f64; 2]> {
-    // The surface continues across an intersection curve (both patches do): never outline.
-    if s.meet.is_some() {
-        return vec![s.range];
-    }
     orientations_of(scene, s).map_or_else(Vec::new, |o| continuing_stretches(&o, 6))
 }
 
 /// [`crate::analysis::visibility::fold_edges::edge_roles`] of a side shared by two patches
 /// (deep near junctions); none for other segments.
 fn edge_roles_of(scene: &Scene, s: &Segment) -> [Vec<[f64; 2]>; 2] {
-    if s.meet.is_some() {
-        return [vec![s.range], Vec::new()];
-    }
     orientations_of(scene, s).map_or_else(|| [Vec::new(), Vec::new()], |o| edge_roles(&o, 24, 2048))
 }
 
