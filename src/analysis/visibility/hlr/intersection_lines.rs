@@ -83,7 +83,7 @@ pub(super) fn intersection_lines(
 ) -> IntersectionLines {
     let pairs = candidate_pairs(scene);
     let opts = SpaceCurveOptions {
-        max_boxes: 20_000,
+        max_boxes: 3_000,
         deadline,
         ..SpaceCurveOptions::default()
     };

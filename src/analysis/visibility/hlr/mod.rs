@@ -205,8 +205,10 @@ fn drawing(model: &Model, view: &View, opts: &HlrOptions) -> Result<HiddenLines,
     stats.trim_crossings = trims.crossings;
     segments.extend(trims.segments);
     // 1c. The curves where patches pass through each other.
+    // A file that states faces or a B-rep says its faces meet only along their edges (the
+    // trim assumption): the curves where their untrimmed surfaces cross are not searched.
     let mut meets_unresolved = Vec::new();
-    if opts.intersections {
+    if opts.intersections && model.faces.is_empty() && model.brep.is_none() {
         let first_chain = segments.iter().map(|s| s.chain + 1).max().unwrap_or(0);
         let boundary = scene.adjacency.edges.len();
         let meets = intersection_lines(
