@@ -154,7 +154,7 @@ pub(crate) fn print_info(
         let weld = match t.weld {
             WeldTolerance::Exact => "exact".to_string(),
             WeldTolerance::Absolute(x) => {
-                format!("within {x} (largest gap welded {:.3e})", t.max_weld_gap)
+                format!("within {x:.3e} (largest gap welded {:.3e})", t.max_weld_gap)
             }
         };
         writeln!(out, "edges: {} ({} shared, {} boundary, {} non-manifold); {} collapsed patch sides; weld {}", t.edges, t.shared_edges, t.boundary_edges, t.nonmanifold_edges, t.collapsed_edges, weld)?;
@@ -175,6 +175,15 @@ pub(crate) fn print_info(
                 t.euler_characteristic
             )?,
         }
+    }
+    if let Some(c) = info.side_contacts.as_ref().filter(|c| !c.pairs.is_empty()) {
+        writeln!(
+            out,
+            "side contacts: {} pairs of patches whose sides run along each other within {:.1e} without a common corner (largest gap {:.1e}): taken as adjacent",
+            c.pairs.len(),
+            c.tolerance,
+            c.largest_gap
+        )?;
     }
     if let Some(f) = &info.faces {
         writeln!(

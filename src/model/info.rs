@@ -33,6 +33,10 @@ pub struct ModelInfo {
     pub bounding_box: Option<BoundingBox>,
     /// Patch topology (absent for a mesh-only model).
     pub topology: Option<PatchTopology>,
+    /// Patch sides that run along another patch's side without a common corner (absent for
+    /// a model with trimmed faces or without patches): the analyses take those pairs as
+    /// adjacent, and say so in their assumptions.
+    pub side_contacts: Option<super::ContactSummary>,
     /// Topology of each mesh.
     pub meshes: Vec<MeshTopology>,
     /// The trimmed faces read (absent when the file states none).
@@ -68,6 +72,14 @@ impl ModelInfo {
                 .count(),
             bounding_box,
             topology: (!model.patches.is_empty()).then(|| PatchTopology::of_model(model, weld)),
+            side_contacts: (!model.patches.is_empty() && model.faces.is_empty()).then(|| {
+                let surfaces: Vec<_> = model.patches.iter().map(|p| &p.surface).collect();
+                let adjacency = super::PatchAdjacency::of_patches(&surfaces, weld);
+                let tol = super::contact_tolerance(weld.distance(), model.diagonal());
+                let found =
+                    super::side_contacts(&surfaces, |a, b| adjacency.shares_corner(a, b), tol);
+                super::ContactSummary::of(&found, tol)
+            }),
             meshes: model.meshes.iter().map(MeshTopology::of_mesh).collect(),
             faces: (!model.faces.is_empty()).then(|| FacesSummary::of(model)),
             brep: model.brep.as_ref().map(super::Brep::summary),

@@ -3,6 +3,7 @@
 mod brep;
 mod face;
 mod info;
+mod side_contact;
 mod topology;
 
 pub use brep::{Brep, BrepEdge, BrepSummary};
@@ -10,6 +11,9 @@ pub use face::{
     in_domain, orientation, Closing, Face, InDomain, LoopError, Orientation, TrimLoop, TrimPiece,
 };
 pub use info::{default_weld, BoundingBox, FacesSummary, ModelInfo};
+pub use side_contact::{
+    contact_assumption, contact_tolerance, side_contacts, ContactSummary, SideContact,
+};
 
 pub use topology::{MeshTopology, PatchAdjacency, PatchTopology, SideUse, WeldTolerance};
 

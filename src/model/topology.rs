@@ -18,6 +18,16 @@ pub enum WeldTolerance {
     Absolute(f64),
 }
 
+impl WeldTolerance {
+    /// The weld distance, if not exact.
+    pub fn distance(self) -> Option<f64> {
+        match self {
+            WeldTolerance::Exact => None,
+            WeldTolerance::Absolute(d) => Some(d),
+        }
+    }
+}
+
 /// The topology of a model's patches.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct PatchTopology {
@@ -257,6 +267,12 @@ pub struct PatchAdjacency {
 }
 
 impl PatchAdjacency {
+    /// Whether patches `a` and `b` share a welded corner.
+    pub fn shares_corner(&self, a: usize, b: usize) -> bool {
+        let (ca, cb) = (&self.corners[a], &self.corners[b]);
+        ca.iter().any(|x| cb.contains(x))
+    }
+
     /// Matches corners and sides as `weld` says (see [`PatchTopology::of_patches`]).
     pub fn of_patches(patches: &[&RationalPatch], weld: WeldTolerance) -> PatchAdjacency {
         let mut welder = Welder {

@@ -4,7 +4,10 @@
 use crate::analysis::projection::{ImagePolys, Projection, ProjectionError};
 use crate::analysis::view::View;
 use crate::geometry::Rect;
-use crate::model::{Model, PatchAdjacency, WeldTolerance};
+use crate::model::{
+    contact_assumption, contact_tolerance, side_contacts, Model, PatchAdjacency, SideContact,
+    WeldTolerance,
+};
 use crate::number::{Number, Rational};
 use crate::solver::point_in_face::{
     point_in_face, FacesOnPatch, Membership, NoParameterBox, PieceOnPatch,
@@ -86,6 +89,12 @@ pub struct Scene {
     pub jacobians: Vec<[[Poly; 2]; 2]>,
     /// Which patch sides are the same edge.
     pub adjacency: PatchAdjacency,
+    /// Sides that run along another patch's side without a common corner (measured, for a
+    /// model without trimmed faces), in the order of their pairs: those pairs are adjacent
+    /// too ([`Scene::adjacent`]).
+    pub contacts: Vec<SideContact>,
+    /// The tolerance of that measurement.
+    pub contact_tolerance: f64,
     /// Per patch, the bounds of the cells of a [`LEAF_GRID`]² grid of its parameter square,
     /// made on first use ([`Scene::leaf_bounds`]).
     leaves: Vec<OnceLock<Vec<ImageBounds>>>,
@@ -139,6 +148,16 @@ impl Scene {
             .collect();
         let surfaces: Vec<_> = model.patches.iter().map(|p| &p.surface).collect();
         let adjacency = PatchAdjacency::of_patches(&surfaces, weld);
+        let contact_tolerance = contact_tolerance(weld.distance(), model.diagonal());
+        let contacts = if model.faces.is_empty() {
+            side_contacts(
+                &surfaces,
+                |a, b| adjacency.shares_corner(a, b),
+                contact_tolerance,
+            )
+        } else {
+            Vec::new()
+        };
         let leaves = (0..images.len()).map(|_| OnceLock::new()).collect();
         Ok(Scene {
             projection,
@@ -146,6 +165,8 @@ impl Scene {
             bounds,
             jacobians,
             adjacency,
+            contacts,
+            contact_tolerance,
             leaves,
             faces: Vec::new(),
             trim_contact: 0.0,
@@ -179,6 +200,23 @@ impl Scene {
             })
             .collect();
         self
+    }
+
+    /// Whether two patches are neighbours: they share a welded corner, or a side of one runs
+    /// along a side of the other ([`Scene::contacts`]). Neighbours are taken not to cross
+    /// each other away from their common points (the adjacency assumption).
+    pub fn adjacent(&self, a: usize, b: usize) -> bool {
+        self.adjacency.shares_corner(a, b)
+            || self
+                .contacts
+                .binary_search_by(|c| c.patches.cmp(&[a.min(b), a.max(b)]))
+                .is_ok()
+    }
+
+    /// The assumption that [`Scene::contacts`] adds to a report, if any.
+    pub fn contact_assumption(&self) -> Option<String> {
+        (!self.contacts.is_empty())
+            .then(|| contact_assumption(&self.contacts, self.contact_tolerance))
     }
 
     /// Whether patch `j` is restricted to trimmed faces.

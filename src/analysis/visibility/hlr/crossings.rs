@@ -9,7 +9,6 @@
 
 use crate::analysis::contour::curves::Silhouette;
 use crate::analysis::visibility::hlr::cusps::cusp_runs;
-use crate::analysis::visibility::hlr::intersection_lines::shares_corner;
 use crate::analysis::visibility::hlr::lemmas::{
     arc_fold_exclusion, common_monotone, fold_cover, vertex_exclusion,
 };
@@ -159,7 +158,7 @@ pub(super) fn crossings(
         for (j, jb) in scene.bounds.iter().enumerate() {
             if sa.on.iter().any(|x| x.0 == j)
                 || sa.touches.contains(&j)
-                || sa.on.iter().any(|x| shares_corner(scene, x.0, j))
+                || sa.on.iter().any(|x| scene.adjacent(x.0, j))
             {
                 continue;
             }

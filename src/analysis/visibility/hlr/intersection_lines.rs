@@ -43,8 +43,8 @@ pub(super) struct IntersectionLines {
     pub(super) pairs: usize,
 }
 
-/// The pairs of patches whose intersection curves are searched: no common corner, neither
-/// trimmed, image boxes and depth ranges meeting.
+/// The pairs of patches whose intersection curves are searched: not adjacent (no common
+/// corner, no side along the other's), neither trimmed, image boxes and depth ranges meeting.
 fn candidate_pairs(scene: &Scene) -> Vec<[usize; 2]> {
     let n = scene.bounds.len();
     let mut out = Vec::new();
@@ -56,19 +56,13 @@ fn candidate_pairs(scene: &Scene) -> Vec<[usize; 2]> {
                 && a.meets_image(b)
                 && !scene.trimmed(p)
                 && !scene.trimmed(q)
-                && !shares_corner(scene, p, q)
+                && !scene.adjacent(p, q)
             {
                 out.push([p, q]);
             }
         }
     }
     out
-}
-
-/// Whether two patches share a welded corner.
-pub(super) fn shares_corner(scene: &Scene, a: usize, b: usize) -> bool {
-    let (ca, cb) = (&scene.adjacency.corners[a], &scene.adjacency.corners[b]);
-    ca.iter().any(|x| cb.contains(x))
 }
 
 /// The intersection curves of every candidate pair, as segments (chains from `first_chain`);

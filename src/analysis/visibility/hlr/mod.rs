@@ -267,6 +267,7 @@ fn drawing(model: &Model, view: &View, opts: &HlrOptions) -> Result<HiddenLines,
         stats.escalations.merge(&counts);
     }
     let mut assumptions = vec![ADJACENT_ASSUMPTION.to_string()];
+    assumptions.extend(scene.contact_assumption());
     if let WeldTolerance::Absolute(d) = weld {
         assumptions.push(weld_assumption(d));
     }
@@ -306,6 +307,6 @@ pub fn trim_assumption(d: f64) -> String {
 /// control points lie within `d` of one point is that point (a pole).
 pub fn weld_assumption(d: f64) -> String {
     format!(
-        "patch sides matched within {d} (--weld) are the same edge, and a side whose control points lie within {d} of one point is taken as that point (a pole): their points are taken as one point of space"
+        "patch sides matched within {d:.3e} (--weld) are the same edge, and a side whose control points lie within {d:.3e} of one point is taken as that point (a pole): their points are taken as one point of space"
     )
 }

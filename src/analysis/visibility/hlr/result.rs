@@ -150,7 +150,7 @@ pub struct HiddenLines {
     pub tolerance: Option<f64>,
 }
 /// The assumption of every drawing of a model with adjacent patches.
-pub const ADJACENT_ASSUMPTION: &str = "no patch intersects itself, and patches that share a corner or an edge do not cross each other away from their common points (penetrations are searched between patches that share no corner only)";
+pub const ADJACENT_ASSUMPTION: &str = "no patch intersects itself, and patches that share a corner or an edge do not cross each other away from their common points (penetrations and intersection curves are searched between patches that share no corner and no side only)";
 impl HiddenLines {
     /// The drawing of the model in `frame` carried back to the model's coordinates
     /// (`proofs/model-frame.md`): the points moved by the origin, error bounds grown by the

@@ -97,7 +97,7 @@ pub(super) fn patch_leaves(ctx: &Context, p: usize) -> Vec<Leaf> {
         }
     }
     for t in &o.regions {
-        if t.patch != p && !adjacent(ctx.scene, p, t.patch) {
+        if t.patch != p && !ctx.scene.adjacent(p, t.patch) {
             if let Some(r) = &t.root {
                 cands.push((t, r));
             }
@@ -110,12 +110,6 @@ pub(super) fn patch_leaves(ctx: &Context, p: usize) -> Vec<Leaf> {
     };
     visit(ctx, p, 0, 0, 0, &polys, cands, &mut out);
     out
-}
-
-/// Whether two patches share a corner or an edge.
-pub(super) fn adjacent(scene: &Scene, a: usize, b: usize) -> bool {
-    let (ca, cb) = (&scene.adjacency.corners[a], &scene.adjacency.corners[b]);
-    ca.iter().any(|x| cb.contains(x))
 }
 
 /// A cell's polynomials, restricted to it by midpoint subdivision.

@@ -351,6 +351,7 @@ fn regions(model: &Model, view: &View, opts: &VisibleOptions) -> Result<VisibleR
         patches.push(r);
     }
     let mut assumptions = vec![ADJACENT_ASSUMPTION.to_string()];
+    assumptions.extend(scene.contact_assumption());
     if let WeldTolerance::Absolute(d) = weld {
         assumptions.push(crate::analysis::visibility::hlr::weld_assumption(d));
     }
