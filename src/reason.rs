@@ -150,6 +150,10 @@ pub enum Reason {
     /// A piece of an intersection curve solved past a side of its patches' squares whose
     /// crossing with that side, or whether it lies inside, was not decided.
     IntersectionClip,
+    /// An arc of an intersection curve the solver traced from a point where the curve may be
+    /// singular (branches meeting, or the two surfaces tangent): it is not proven a graph over
+    /// one of the four parameters.
+    IntersectionBranch,
     /// The line's image is not proven free of self-crossings (a cusp of the outline?).
     OutlineCusp,
     /// Where the line crosses a line of `patches[0]` (or of `patches[1]`) is not isolated.
@@ -441,6 +445,9 @@ impl fmt::Display for Reason {
             ),
             IntersectionClip => f.write_str(
                 "where the intersection curve crosses a side of its patches, solved past that side, is not decided",
+            ),
+            IntersectionBranch => f.write_str(
+                "the arc leaves a point where the intersection curve may be singular (branches meeting, or the surfaces tangent) and is not proven a graph over one parameter",
             ),
             OutlineCusp => f.write_str(
                 "its image is not proven free of self-crossings (a cusp of the outline?)",

@@ -61,7 +61,7 @@ pub fn contact_tolerance(weld: Option<f64>, diagonal: f64) -> f64 {
 }
 
 /// The side contacts of patches that share no corner (`adjacent` says which pairs already
-/// do): a stretch of one side (at least [`STRETCH`] consecutive of [`SAMPLES`] samples)
+/// do): a stretch of one side (at least 3 consecutive of 17 samples)
 /// within `tol` of a side of the other.
 pub fn side_contacts(
     patches: &[&RationalPatch],

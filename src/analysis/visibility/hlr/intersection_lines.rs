@@ -135,11 +135,12 @@ pub(super) fn intersection_lines(
                 if arc.monotone_in >= 4 {
                     // An arc from a singular point: not a graph over one variable.
                     let cell = pair.unwarp_box(&arc.cell);
-                    let why = Reason::SingularPointAt {
-                        uv: [format!("{:?}", cell[0]), format!("{:?}", cell[1])],
-                    };
-                    out.unresolved
-                        .push(unresolved_piece([*p, *q], &cell, why, &draw));
+                    out.unresolved.push(unresolved_piece(
+                        [*p, *q],
+                        &cell,
+                        Reason::IntersectionBranch,
+                        &draw,
+                    ));
                     continue;
                 }
                 let axis = arc.monotone_in;
