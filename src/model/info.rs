@@ -75,9 +75,7 @@ impl ModelInfo {
             side_contacts: (!model.patches.is_empty() && model.faces.is_empty()).then(|| {
                 let surfaces: Vec<_> = model.patches.iter().map(|p| &p.surface).collect();
                 let adjacency = super::PatchAdjacency::of_patches(&surfaces, weld);
-                let tol = super::contact_tolerance(weld.distance(), model.diagonal());
-                let found =
-                    super::side_contacts(&surfaces, |a, b| adjacency.shares_corner(a, b), tol);
+                let (found, tol) = super::model_contacts(model, &adjacency, weld);
                 super::ContactSummary::of(&found, tol)
             }),
             meshes: model.meshes.iter().map(MeshTopology::of_mesh).collect(),

@@ -11,6 +11,7 @@
 //! patches meet along that side and do not cross each other elsewhere. The measurement is in
 //! floating point and proves nothing; it only decides which pairs the assumption covers.
 
+use super::{Model, PatchAdjacency, WeldTolerance};
 use crate::surface::{DrawPatch, Edge, RationalPatch};
 
 /// Two patch sides found running along each other.
@@ -47,7 +48,7 @@ impl ContactSummary {
     }
 }
 
-/// Samples along a side, ends included.
+/// Samples along a side, ends included (`COARSE` a multiple of `SAMPLES − 1`).
 const SAMPLES: usize = 17;
 /// Consecutive samples within the tolerance that make a stretch: an eighth of the side.
 const STRETCH: usize = 3;
@@ -58,6 +59,23 @@ const COARSE: usize = 32;
 /// of the model's diagonal (CAD files state resolutions their faces do not keep).
 pub fn contact_tolerance(weld: Option<f64>, diagonal: f64) -> f64 {
     weld.unwrap_or(0.0).max(1e-5 * diagonal)
+}
+
+/// The side contacts of a model's patches that share no welded corner, with the tolerance
+/// they were measured with ([`contact_tolerance`]); none for a model with trimmed faces
+/// (their patches' sides are not the faces' boundaries).
+pub fn model_contacts(
+    model: &Model,
+    adjacency: &PatchAdjacency,
+    weld: WeldTolerance,
+) -> (Vec<SideContact>, f64) {
+    let tol = contact_tolerance(weld.distance(), model.diagonal());
+    if !model.faces.is_empty() {
+        return (Vec::new(), tol);
+    }
+    let surfaces: Vec<&RationalPatch> = model.patches.iter().map(|p| &p.surface).collect();
+    let found = side_contacts(&surfaces, |a, b| adjacency.shares_corner(a, b), tol);
+    (found, tol)
 }
 
 /// The side contacts of patches that share no corner (`adjacent` says which pairs already
@@ -73,6 +91,20 @@ pub fn side_contacts(
         .iter()
         .flat_map(|p| Edge::ALL.map(|e| side_box(p, e, tol)))
         .collect();
+    // Each side at COARSE + 1 points, once (every other one is a sample of the stretch).
+    let samples: Vec<Vec<[f64; 3]>> = draw
+        .iter()
+        .flat_map(|d| {
+            Edge::ALL.map(|e| {
+                (0..=COARSE)
+                    .map(|i| {
+                        let (u, v) = side_point(e, i as f64 / COARSE as f64);
+                        d.eval(u, v)
+                    })
+                    .collect()
+            })
+        })
+        .collect();
     let mut out = Vec::new();
     for p in 0..patches.len() {
         for q in p + 1..patches.len() {
@@ -81,12 +113,21 @@ pub fn side_contacts(
             }
             'sides: for (a, ea) in Edge::ALL.into_iter().enumerate() {
                 for (b, eb) in Edge::ALL.into_iter().enumerate() {
-                    if !boxes_meet(&boxes[4 * p + a], &boxes[4 * q + b]) {
+                    let (i, j) = (4 * p + a, 4 * q + b);
+                    if !boxes_meet(&boxes[i], &boxes[j]) {
                         continue;
                     }
-                    let gap = stretch_gap(&draw[p], ea, &draw[q], eb, tol)
-                        .or_else(|| stretch_gap(&draw[q], eb, &draw[p], ea, tol));
-                    if let Some(gap) = gap {
+                    let from_p = || {
+                        may_stretch(&samples[i], &boxes[j])
+                            .then(|| stretch_gap(&samples[i], &samples[j], &draw[q], eb, tol))
+                            .flatten()
+                    };
+                    let from_q = || {
+                        may_stretch(&samples[j], &boxes[i])
+                            .then(|| stretch_gap(&samples[j], &samples[i], &draw[p], ea, tol))
+                            .flatten()
+                    };
+                    if let Some(gap) = from_p().or_else(from_q) {
                         out.push(SideContact {
                             patches: [p, q],
                             sides: [ea, eb],
@@ -151,21 +192,54 @@ fn distance(x: [f64; 3], y: [f64; 3]) -> f64 {
     ((x[0] - y[0]).powi(2) + (x[1] - y[1]).powi(2) + (x[2] - y[2]).powi(2)).sqrt()
 }
 
-/// The largest distance from the samples of a stretch of side `ea` of `a` to side `eb` of
-/// `b`, if a stretch of [`STRETCH`] consecutive samples lies within `tol` of it.
-fn stretch_gap(a: &DrawPatch, ea: Edge, b: &DrawPatch, eb: Edge, tol: f64) -> Option<f64> {
+/// Whether [`STRETCH`] consecutive samples of a side (every other of `side`) lie in `other`
+/// (the other side's box grown by the tolerance): a stretch cannot be nearer than that.
+fn may_stretch(side: &[[f64; 3]], other: &[[f64; 2]; 3]) -> bool {
+    let mut run = 0;
+    for x in side.iter().step_by(COARSE / (SAMPLES - 1)) {
+        if (0..3).all(|k| other[k][0] <= x[k] && x[k] <= other[k][1]) {
+            run += 1;
+            if run >= STRETCH {
+                return true;
+            }
+        } else {
+            run = 0;
+        }
+    }
+    false
+}
+
+/// The largest distance from the samples of a stretch of a side (`side`: its points at
+/// `COARSE + 1` parameters, every other one a sample) to side `eb` of `b` (`coarse`: its
+/// points), if a stretch of [`STRETCH`] consecutive samples lies within `tol` of it.
+fn stretch_gap(
+    side: &[[f64; 3]],
+    coarse: &[[f64; 3]],
+    b: &DrawPatch,
+    eb: Edge,
+    tol: f64,
+) -> Option<f64> {
     let on_b = |t: f64| {
         let (u, v) = side_point(eb, t);
         b.eval(u, v)
     };
-    let coarse: Vec<[f64; 3]> = (0..=COARSE)
-        .map(|i| on_b(i as f64 / COARSE as f64))
-        .collect();
+    // Every point of the side is within about `spacing` of a coarse point: a sample farther
+    // than `tol + spacing` from all of them is not refined.
+    let spacing = coarse
+        .windows(2)
+        .map(|w| distance(w[0], w[1]))
+        .fold(0.0f64, f64::max);
     let (mut run, mut best_run, mut gap, mut best_gap) = (0, 0, 0.0f64, 0.0f64);
-    for i in 0..SAMPLES {
-        let (u, v) = side_point(ea, i as f64 / (SAMPLES - 1) as f64);
-        let x = a.eval(u, v);
-        let d = nearest_distance(x, &coarse, &on_b);
+    for x in side.iter().step_by(COARSE / (SAMPLES - 1)) {
+        let near = coarse
+            .iter()
+            .map(|y| distance(*x, *y))
+            .fold(f64::INFINITY, f64::min);
+        let d = if near > tol + spacing {
+            near
+        } else {
+            nearest_distance(*x, coarse, &on_b)
+        };
         if d <= tol {
             run += 1;
             gap = gap.max(d);

@@ -5,8 +5,7 @@ use crate::analysis::projection::{ImagePolys, Projection, ProjectionError};
 use crate::analysis::view::View;
 use crate::geometry::Rect;
 use crate::model::{
-    contact_assumption, contact_tolerance, side_contacts, Model, PatchAdjacency, SideContact,
-    WeldTolerance,
+    contact_assumption, model_contacts, Model, PatchAdjacency, SideContact, WeldTolerance,
 };
 use crate::number::{Number, Rational};
 use crate::solver::point_in_face::{
@@ -148,16 +147,7 @@ impl Scene {
             .collect();
         let surfaces: Vec<_> = model.patches.iter().map(|p| &p.surface).collect();
         let adjacency = PatchAdjacency::of_patches(&surfaces, weld);
-        let contact_tolerance = contact_tolerance(weld.distance(), model.diagonal());
-        let contacts = if model.faces.is_empty() {
-            side_contacts(
-                &surfaces,
-                |a, b| adjacency.shares_corner(a, b),
-                contact_tolerance,
-            )
-        } else {
-            Vec::new()
-        };
+        let (contacts, contact_tolerance) = model_contacts(model, &adjacency, weld);
         let leaves = (0..images.len()).map(|_| OnceLock::new()).collect();
         Ok(Scene {
             projection,
