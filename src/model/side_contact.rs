@@ -114,7 +114,12 @@ pub fn side_contacts(
             'sides: for (a, ea) in Edge::ALL.into_iter().enumerate() {
                 for (b, eb) in Edge::ALL.into_iter().enumerate() {
                     let (i, j) = (4 * p + a, 4 * q + b);
-                    if !boxes_meet(&boxes[i], &boxes[j]) {
+                    // A side collapsed to a point (a pole, an apex) touches, it runs along
+                    // nothing.
+                    if !boxes_meet(&boxes[i], &boxes[j])
+                        || collapsed(&samples[i], tol)
+                        || collapsed(&samples[j], tol)
+                    {
                         continue;
                     }
                     let from_p = || {
@@ -182,6 +187,11 @@ fn side_box(p: &RationalPatch, e: Edge, tol: f64) -> [[f64; 2]; 3] {
         let slack = tol + 1e-12 * lo.abs().max(hi.abs());
         [lo - slack, hi + slack]
     })
+}
+
+/// Whether a side's points all lie within `2 tol` of its first one.
+fn collapsed(side: &[[f64; 3]], tol: f64) -> bool {
+    side.iter().all(|x| distance(*x, side[0]) <= 2.0 * tol)
 }
 
 fn boxes_meet(a: &[[f64; 2]; 3], b: &[[f64; 2]; 3]) -> bool {
@@ -309,6 +319,26 @@ mod tests {
         // Within a tolerance below the gap, no contact; adjacent pairs are skipped.
         assert!(side_contacts(&patches, |_, _| false, 1e-6).is_empty());
         assert!(side_contacts(&patches, |_, _| true, 1e-4).is_empty());
+    }
+
+    #[test]
+    fn a_side_collapsed_onto_another_side_is_no_contact() {
+        let a = plane(0, 1, 0, 1, Rational::new());
+        // A triangle whose side u = 0 is the point (1, 1/2, 0) on a's side x = 1.
+        let p = |x: Rational, y: Rational| -> Point3 { [x, y, Rational::new()] };
+        let (one, half) = (Rational::from(1), Rational::from((1i64, 2i64)));
+        let b = RationalPatch::polynomial(
+            [1, 1],
+            vec![
+                p(one.clone(), half.clone()),
+                p(one.clone(), half),
+                p(Rational::from(2), Rational::new()),
+                p(Rational::from(2), one),
+            ],
+        )
+        .unwrap();
+        let found = side_contacts(&[&a, &b], |_, _| false, 1e-4);
+        assert!(found.is_empty(), "{found:?}");
     }
 
     #[test]
