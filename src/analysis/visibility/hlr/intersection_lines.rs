@@ -132,22 +132,17 @@ pub(super) fn intersection_lines(
                     continue;
                 };
                 let ends = [a, b].map(|c| pair.unwarp_box(&curve.crossings[c].enclosure));
-                if arc.monotone_in >= 4 {
-                    // An arc from a singular point: not a graph over one variable.
-                    let cell = pair.unwarp_box(&arc.cell);
-                    out.unresolved.push(unresolved_piece(
-                        [*p, *q],
-                        &cell,
-                        Reason::IntersectionBranch,
-                        &draw,
-                    ));
-                    continue;
-                }
-                let axis = arc.monotone_in;
                 let cell = pair.unwarp_box(&arc.cell);
                 if outside_squares(&cell) {
                     continue;
                 }
+                let unresolved = |why| unresolved_piece([*p, *q], &cell, why, &draw);
+                if arc.monotone_in >= 4 {
+                    // An arc from a singular point: not a graph over one variable.
+                    out.unresolved.push(unresolved(Reason::IntersectionBranch));
+                    continue;
+                }
+                let axis = arc.monotone_in;
                 let end_at = |c: usize, e: &Vec<[f64; 2]>| End {
                     at: e.clone(),
                     face: face_of(&pair, &curve.crossings[c]),
@@ -164,12 +159,7 @@ pub(super) fn intersection_lines(
                     match clip_arc(&pair, &arc.cell, axis, whole) {
                         Some(pieces) => pieces,
                         None => {
-                            out.unresolved.push(unresolved_piece(
-                                [*p, *q],
-                                &cell,
-                                Reason::IntersectionClip,
-                                &draw,
-                            ));
+                            out.unresolved.push(unresolved(Reason::IntersectionClip));
                             continue;
                         }
                     }
