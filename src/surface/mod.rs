@@ -5,6 +5,7 @@
 
 mod curve;
 pub mod float_eval;
+mod inversion;
 mod knots;
 mod mesh;
 pub(crate) mod normal;
@@ -13,6 +14,7 @@ mod patch;
 
 pub use curve::{ModelCurve, NurbsCurve, ParameterCurve, RationalCurve};
 pub use float_eval::{eval_f64, DrawPatch, Evaluator};
+pub use inversion::{Inversion, InversionError, Inverter};
 pub(crate) use knots::de_boor_f64;
 pub use mesh::Mesh;
 pub use nurbs::{FloatNurbs, NurbsError, NurbsSurface};
