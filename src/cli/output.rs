@@ -196,6 +196,13 @@ pub(crate) fn print_info(
             "loop orientation (proven): {} counter-clockwise, {} clockwise, {} undecided; {} against the usual convention (outer counter-clockwise, inner clockwise)",
             f.counter_clockwise, f.clockwise, f.undecided, f.unusual_orientation
         )?;
+        if f.inverted_curves > 0 {
+            writeln!(
+                out,
+                "inverted edges: {} trimming curves made from model-space edges, proven within {:.3e} of their edges",
+                f.inverted_curves, f.inversion_distance
+            )?;
+        }
     }
     if let Some(b) = &info.brep {
         writeln!(

@@ -3,7 +3,10 @@
 
 use crate::model::{in_domain, Closing, Face, InDomain};
 use crate::number::Rational;
-use crate::surface::{NurbsSurface, Point3, RationalPatch};
+use crate::surface::{
+    InversionError, Inverter, ModelCurve, NurbsSurface, ParameterCurve, Point3, RationalPatch,
+};
+use std::sync::Arc;
 
 /// The largest gap between consecutive trimming curves that is bridged, relative to the
 /// larger side of the surface's parameter domain; also how far a trimming curve may leave the
@@ -88,6 +91,9 @@ pub(crate) struct SurfaceInfo {
     pub(crate) collapsed: [bool; 4],
     /// Closed in u, in v, as the file states (PROP1, PROP2).
     pub(crate) closed: [bool; 2],
+    /// What inverts model-space edges onto it (`None` for surfaces whose loops are always
+    /// read or mapped from the file).
+    pub(crate) inverter: Option<Arc<Inverter>>,
 }
 
 impl SurfaceInfo {
@@ -119,7 +125,60 @@ impl SurfaceInfo {
             domain: surface.domain(),
             collapsed: collapsed_sides(pieces),
             closed,
+            inverter: Inverter::new(surface.spans(), pieces, closed).map(Arc::new),
         }
+    }
+}
+
+/// The first bound to which model-space edges are inverted onto a surface of size `size`
+/// (the largest side of its control net's box): half the resolution the file states, so that
+/// the curves of one edge on its two faces meet within it; without one, 2⁻³¹ of the size (half
+/// the floor of the drawing's contact distance).
+fn inversion_target(resolution: Option<&Rational>, size: f64) -> f64 {
+    match resolution.map(Rational::to_f64) {
+        Some(r) if r > 0.0 => 0.5 * r,
+        _ => size * 2f64.powi(-31),
+    }
+}
+
+/// The largest bound an edge is inverted to, relative to its surface's size. Files' edges lie
+/// off their surfaces by more than the resolution they state, as CAD systems keep a tolerance
+/// per edge (occ22470 states 1e-5 and has edges 7.5e-4 from their faces, on a part of size
+/// 180). The bound reached is stated with every drawing on the faces.
+const LARGEST_INVERSION: f64 = 1e-4;
+
+/// The curves of a model-space edge (its exact Bézier pieces, in its direction) on the
+/// surface `info` describes, and the proven distance; or why not (the face is then used
+/// untrimmed for that reason). The bound starts at [`inversion_target`]; where the edge lies
+/// farther from the surface, it grows to twice the distance found, up to
+/// [`LARGEST_INVERSION`] of the surface's size.
+pub(crate) fn inverted_edge(
+    info: &SurfaceInfo,
+    edge: &[ModelCurve],
+    resolution: Option<&Rational>,
+    what: &str,
+) -> Result<(Vec<ParameterCurve>, f64), String> {
+    let Some(inverter) = &info.inverter else {
+        return Err(format!("{what} has no parameter-space curve, and inverting onto this kind of surface is not built yet"));
+    };
+    let largest = LARGEST_INVERSION * inverter.size();
+    let mut target = inversion_target(resolution, inverter.size()).min(largest);
+    loop {
+        let error = match inverter.invert(edge, target) {
+            Ok(i) => return Ok((i.pieces, i.distance)),
+            Err(e) => e,
+        };
+        let next = match &error {
+            InversionError::OffSurface { distance, .. } => (2.0 * distance).max(1.5 * target),
+            // Near the edge's distance from the surface the bound may just miss the target.
+            InversionError::NotProven { .. } => 2.0 * target,
+            _ => target,
+        }
+        .min(largest);
+        if next <= target {
+            return Err(format!("{what} has no parameter-space curve and was not inverted onto the surface within {largest:.3e} (1e-4 of the surface's size): {error}"));
+        }
+        target = next;
     }
 }
 

@@ -53,6 +53,12 @@ pub struct TrimLoop {
     pub largest_gap: f64,
     /// Gaps bridged along a collapsed side of the domain ([`Closing::collapsed`]).
     pub side_bridges: usize,
+    /// Curves limn made by inverting a model-space edge onto the surface (the file gives the
+    /// edge without a parameter-space curve on this face; `proofs/edge-inversion.md`).
+    pub inverted_curves: usize,
+    /// The proven bound (max norm, model space) between those curves' points on the surface
+    /// and their edges' points (0 when there are none).
+    pub inversion_distance: f64,
 }
 
 /// Why a chain of curves is not a loop.
@@ -197,6 +203,8 @@ impl TrimLoop {
             orientation,
             largest_gap: largest.to_f64(),
             side_bridges,
+            inverted_curves: 0,
+            inversion_distance: 0.0,
         })
     }
 

@@ -107,6 +107,11 @@ pub struct FacesSummary {
     pub side_bridges: usize,
     /// The largest gap bridged straight (max norm in the parameter plane).
     pub largest_gap: f64,
+    /// Trimming curves limn made by inverting model-space edges onto their surfaces.
+    pub inverted_curves: usize,
+    /// The proven bound between those curves' points on the surface and their edges (max
+    /// norm, model space).
+    pub inversion_distance: f64,
     /// Loops by proven orientation: counter-clockwise, clockwise, undecided.
     pub counter_clockwise: usize,
     /// Clockwise loops.
@@ -133,6 +138,8 @@ impl FacesSummary {
             bridges: 0,
             side_bridges: 0,
             largest_gap: 0.0,
+            inverted_curves: 0,
+            inversion_distance: 0.0,
             counter_clockwise: 0,
             clockwise: 0,
             undecided: 0,
@@ -150,6 +157,8 @@ impl FacesSummary {
                 s.curves += l.pieces.len() - l.bridges();
                 s.side_bridges += l.side_bridges;
                 s.largest_gap = s.largest_gap.max(l.largest_gap);
+                s.inverted_curves += l.inverted_curves;
+                s.inversion_distance = s.inversion_distance.max(l.inversion_distance);
                 match l.orientation {
                     Orientation::CounterClockwise => s.counter_clockwise += 1,
                     Orientation::Clockwise => s.clockwise += 1,

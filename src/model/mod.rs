@@ -207,6 +207,16 @@ impl Model {
         b
     }
 
+    /// The proven bound between the trimming curves limn inverted from model-space edges
+    /// and those edges (max norm; 0 when no curve was inverted).
+    pub fn inversion_distance(&self) -> f64 {
+        self.faces
+            .iter()
+            .flat_map(Face::loops)
+            .map(|l| l.inversion_distance)
+            .fold(0.0, f64::max)
+    }
+
     /// The length of the bounding box diagonal, in `f64` (for relative tolerances).
     pub fn diagonal(&self) -> f64 {
         self.bounding_box().map_or(0.0, |[lo, hi]| {

@@ -17,7 +17,7 @@ const MAX_DEPTH: usize = 24;
 /// The most cubic pieces one curve may become.
 const MAX_PIECES: usize = 20_000;
 /// Samples per Bézier piece of the curve before any splitting.
-const FIRST_SAMPLES: usize = 8;
+const FIRST_SAMPLES: usize = 2;
 /// A projected coordinate this close to a knot (relative to the domain's side) is moved onto
 /// the knot exactly, so that a curve along a knot line or the domain's boundary stays on it.
 const SNAP: f64 = 1e-9;
@@ -88,6 +88,8 @@ pub struct Inverter {
     seeds: OnceLock<Vec<([f64; 2], [f64; 3])>>,
     /// Closed in u, in v (a jump across the whole domain is a seam crossing).
     closed: [bool; 2],
+    /// The largest side of the box of the control points.
+    size: f64,
 }
 
 /// One Bézier piece of a curve being inverted, and the targets.
@@ -99,6 +101,16 @@ struct Job<'a> {
     target: f64,
     /// The largest distance (Euclidean) a sample may have from the surface.
     limit: f64,
+}
+
+impl std::fmt::Debug for Inverter {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Inverter")
+            .field("spans", &[self.spans[0].len(), self.spans[1].len()])
+            .field("closed", &self.closed)
+            .field("size", &self.size)
+            .finish_non_exhaustive()
+    }
 }
 
 /// A point of the curve with its inverse.
@@ -231,7 +243,17 @@ impl Inverter {
                 .map(|s| [s[0].to_f64(), s[1].to_f64()])
                 .collect()
         });
+        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for p in pieces.iter().flat_map(|(_, p)| p.points()) {
+            for k in 0..3 {
+                let c = p[k].to_f64();
+                lo[k] = lo[k].min(c);
+                hi[k] = hi[k].max(c);
+            }
+        }
+        let size = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
         Some(Inverter {
+            size,
             spans,
             spans_f64,
             grid,
@@ -240,6 +262,11 @@ impl Inverter {
             seeds: OnceLock::new(),
             closed,
         })
+    }
+
+    /// The largest side of the box of the surface's control points.
+    pub fn size(&self) -> f64 {
+        self.size
     }
 
     fn piece(&self, i: usize) -> Option<&PieceData> {
@@ -386,10 +413,14 @@ impl Inverter {
         best
     }
 
-    /// `uv` with coordinates near a knot moved onto it exactly.
-    fn snapped(&self, uv: [f64; 2]) -> [Rational; 2] {
+    /// `uv` with coordinates near a knot moved onto it exactly: within [`SNAP`] of the
+    /// domain's side, or within `reach[d]` (a move of the surface's point by a small part of
+    /// the target, so that an edge lying along the domain's boundary within the target is
+    /// inverted onto the boundary itself).
+    fn snapped(&self, uv: [f64; 2], reach: [f64; 2]) -> [Rational; 2] {
         let sides = self.sides();
         [0, 1].map(|d| {
+            let near = (SNAP * sides[d]).max(reach[d]);
             let s = &self.spans[d];
             let sf = &self.spans_f64[d];
             let mut knots = sf.iter().map(|k| k[0]).chain([sf[sf.len() - 1][1]]);
@@ -400,7 +431,7 @@ impl Inverter {
                     s[s.len() - 1][1].clone()
                 }
             };
-            match knots.position(|k| (uv[d] - k).abs() <= SNAP * sides[d]) {
+            match knots.position(|k| (uv[d] - k).abs() <= near) {
                 Some(k) => exact(k),
                 None => Rational::from_f64(uv[d]).unwrap_or_default(),
             }
@@ -428,7 +459,11 @@ impl Inverter {
                 target: limit,
             });
         }
-        let exact = self.snapped(uv);
+        // A move of 1/10 of the limit along u or v moves the point by about that much.
+        let reach = self.eval(uv).map_or([0.0; 2], |e| {
+            [1, 2].map(|i| 0.1 * limit / norm3(e[i]).max(f64::MIN_POSITIVE))
+        });
+        let exact = self.snapped(uv, reach);
         let uv = [exact[0].to_f64(), exact[1].to_f64()];
         let tangent = self
             .eval(uv)
@@ -535,8 +570,15 @@ impl Inverter {
                 )
             })
         };
-        let p1 = inner([a.uv[0] + h / 3.0 * ta[0], a.uv[1] + h / 3.0 * ta[1]]);
-        let p2 = inner([b.uv[0] - h / 3.0 * tb[0], b.uv[1] - h / 3.0 * tb[1]]);
+        let mut p1 = inner([a.uv[0] + h / 3.0 * ta[0], a.uv[1] + h / 3.0 * ta[1]]);
+        let mut p2 = inner([b.uv[0] - h / 3.0 * tb[0], b.uv[1] - h / 3.0 * tb[1]]);
+        // Both ends on one knot line (snapped): the whole piece runs along it.
+        for d in 0..2 {
+            if a.exact[d] == b.exact[d] && s[d].contains(&a.exact[d]) {
+                p1[d] = a.exact[d].clone();
+                p2[d] = a.exact[d].clone();
+            }
+        }
         [
             [
                 clamp(a.exact[0].clone(), s[0]),

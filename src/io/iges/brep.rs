@@ -1,15 +1,16 @@
 //! IGES B-rep entities: manifold solid (186), shell (514), face (510), loop (508), edge list
 //! (504) and vertex list (502). The topology (which loops share which edges, the vertices,
 //! the shells) is read whole; a face becomes a trimmed face when every edge of its loops has a
-//! parameter-space curve in the loop (508's PSCPT); otherwise it is used untrimmed and the
-//! reason is reported (inverting model-space edges onto the surface is not built yet).
+//! parameter-space curve in the loop (508's PSCPT) or its model-space curve (504's CURV) can be
+//! inverted onto the surface within a proven bound (`proofs/edge-inversion.md`); otherwise it
+//! is used untrimmed and the reason is reported.
 
 use super::curve::CurveFailure;
 use super::Reader;
-use crate::io::trimmed::SurfaceInfo;
+use crate::io::trimmed::{inverted_edge, SurfaceInfo};
 use crate::io::ReadError;
-use crate::model::{BrepEdge, Closing, Face, TrimLoop};
-use crate::surface::{ParameterCurve, Point3};
+use crate::model::{BrepEdge, Face, TrimLoop};
+use crate::surface::{ModelCurve, ParameterCurve, Point3};
 use std::collections::{BTreeMap, BTreeSet};
 
 /// A vertex: its vertex list (502) and its index in the list.
@@ -112,14 +113,39 @@ impl Reader<'_> {
         Ok([vertex(1, "start")?, vertex(3, "end")?])
     }
 
+    /// The model-space curve (CURV) of edge `index` of the edge list `list`, as exact Bézier
+    /// pieces in its direction.
+    fn edge_curve(
+        &mut self,
+        list: usize,
+        index: usize,
+    ) -> Result<Result<Vec<ModelCurve>, String>, ReadError> {
+        let f = self.fields(list)?;
+        let field = format!("edge {index}: CURV");
+        let curve = self
+            .pointer_at(list, &f, 1 + 5 * (index - 1), &field, false)?
+            .expect("required");
+        match self.read_curve(curve) {
+            Ok(c) if !c.is_empty() => Ok(Ok(c)),
+            Ok(_) => Ok(Err(format!("the curve of edge {index} of the edge list at directory entry {list} has no pieces"))),
+            Err(CurveFailure::Malformed(e)) => Err(e),
+            Err(CurveFailure::Unsupported(why)) => Ok(Err(why)),
+        }
+    }
+
     /// A loop (508) of a face: its edges counted in `brep`, and its
-    /// parameter-space curves as a closed loop when every edge has one.
+    /// parameter-space curves as a closed loop when every edge has one (read from the file,
+    /// or inverted from its model-space curve).
     fn brep_loop(
         &mut self,
         de: usize,
-        closing: Option<&Closing>,
+        info: Option<&SurfaceInfo>,
         brep: &mut BrepBuilder,
     ) -> Result<Result<TrimLoop, String>, ReadError> {
+        let closing = info.map(SurfaceInfo::closing);
+        let closing = closing.as_ref();
+        let mut inverted = 0;
+        let mut inversion_distance: f64 = 0.0;
         let f = self.fields(de)?;
         let n = self.count(de, &f, 0, "N (number of edges)", 1_000_000)?;
         let mut at = 1;
@@ -134,7 +160,7 @@ impl Reader<'_> {
             let index = self.count(de, &f, at + 2, &what("NDX"), 1_000_000)?;
             // OF orients the model-space edge in the loop; the parameter-space curves are
             // written in the loop's direction already (so the fixtures' loops close).
-            self.count(de, &f, at + 3, &what("OF (orientation)"), 1)?;
+            let forward = self.count(de, &f, at + 3, &what("OF (orientation)"), 1)? == 1;
             let k = self.count(de, &f, at + 4, &what("K (parameter-space curves)"), 1_000)?;
             let pscpt: Vec<usize> = (0..k)
                 .map(|j| {
@@ -150,14 +176,41 @@ impl Reader<'_> {
             let [a, b] = self.edge_vertices(de, list, index)?;
             brep.vertices.insert(a.0);
             brep.vertices.insert(b.0);
+            let ends = [a.1.clone(), b.1.clone()];
             let edge = brep.use_edge((list, index), [a.1, b.1]);
-            if closing.is_none() {
+            let Some(info) = info else {
                 continue;
-            }
+            };
             if k == 0 {
-                missing.get_or_insert_with(|| {
-                    "its loops' edges have no parameter-space curves, and inverting model-space edges onto the surface is not built yet".to_string()
-                });
+                if missing.is_some() {
+                    continue;
+                }
+                let edge_curve = match self.edge_curve(list, index)? {
+                    Ok(c) => match run_between(c, &ends) {
+                        Ok(c) => c,
+                        Err(why) => {
+                            missing = Some(format!("the curve of edge {index} of the edge list at directory entry {list} {why}"));
+                            continue;
+                        }
+                    },
+                    Err(why) => {
+                        missing = Some(why);
+                        continue;
+                    }
+                };
+                let name = format!("edge {index} of the edge list at directory entry {list}");
+                match inverted_edge(info, &edge_curve, self.resolution.as_ref(), &name) {
+                    Ok((mut pieces, d)) => {
+                        if !forward {
+                            pieces.reverse();
+                            pieces = pieces.iter().map(ParameterCurve::reversed).collect();
+                        }
+                        inverted += pieces.len();
+                        inversion_distance = inversion_distance.max(d);
+                        curves.extend(pieces.into_iter().map(|c| (c, Some(edge))));
+                    }
+                    Err(why) => missing = Some(why),
+                }
                 continue;
             }
             let mut pieces = Vec::new();
@@ -178,9 +231,19 @@ impl Reader<'_> {
         let Some(closing) = closing else {
             return Ok(Err("its surface is skipped".to_string()));
         };
-        TrimLoop::close(curves, closing, Some(de))
-            .map(Ok)
-            .map_err(|e| self.entity_err(de, format!("loop: {e}")))
+        match TrimLoop::close(curves, closing, Some(de)) {
+            Ok(mut l) => {
+                l.inverted_curves = inverted;
+                l.inversion_distance = inversion_distance;
+                Ok(Ok(l))
+            }
+            // Inverted curves are limn's, not the file's: a loop of them that does not close
+            // leaves the face untrimmed, it does not make the file unreadable.
+            Err(e) if inverted > 0 => Ok(Err(format!(
+                "the loop at directory entry {de}, with edges inverted onto the surface, does not close: {e}"
+            ))),
+            Err(e) => Err(self.entity_err(de, format!("loop: {e}"))),
+        }
     }
 
     /// The face of a 510 entity on a surface; with none (a surface limn skips), its loops are
@@ -194,7 +257,6 @@ impl Reader<'_> {
         let f = self.fields(de)?;
         let n = self.count(de, &f, 1, "N (number of loops)", 100_000)?;
         let outer_flag = self.count(de, &f, 2, "OF (outer loop flag)", 1)? == 1;
-        let closing = info.map(SurfaceInfo::closing);
         brep.faces += 1;
         let mut loops = Vec::with_capacity(n);
         let mut why = None;
@@ -208,7 +270,7 @@ impl Reader<'_> {
             if k > 0 {
                 brep.inner_loops += 1;
             }
-            match self.brep_loop(l, closing.as_ref(), brep)? {
+            match self.brep_loop(l, info, brep)? {
                 Ok(l) => loops.push(l),
                 Err(w) => {
                     why.get_or_insert(w);
@@ -230,5 +292,37 @@ impl Reader<'_> {
             outer,
             inner: loops.collect(),
         }))
+    }
+}
+
+/// The curve of an edge directed from its start vertex to its end vertex: IGES 504 defines the
+/// edge as the part of its curve between them, and some writers give the curve the other way
+/// round. `Err` when neither direction puts its ends within 1e-6 of the curve's size (and the
+/// largest inversion allowed, `io::trimmed`) of the vertices.
+fn run_between(curve: Vec<ModelCurve>, ends: &[Point3; 2]) -> Result<Vec<ModelCurve>, String> {
+    let f = |p: &[crate::number::Rational]| [p[0].to_f64(), p[1].to_f64(), p[2].to_f64()];
+    let gap = |p: [f64; 3], q: &Point3| {
+        let q = f(q);
+        (0..3).map(|k| (p[k] - q[k]).abs()).fold(0.0, f64::max)
+    };
+    let (Some(first), Some(last)) = (curve.first(), curve.last()) else {
+        return Err("has no pieces".into());
+    };
+    let (start, end) = (f(&first.start()), f(&last.end()));
+    let size = (0..3)
+        .map(|k| (start[k] - end[k]).abs())
+        .fold(gap(start, &ends[0]).max(gap(end, &ends[1])), f64::max);
+    let forward = gap(start, &ends[0]).max(gap(end, &ends[1]));
+    let backward = gap(start, &ends[1]).max(gap(end, &ends[0]));
+    let tolerance = 1e-5 * size.max(f64::MIN_POSITIVE);
+    if forward <= backward && forward <= tolerance {
+        Ok(curve)
+    } else if backward <= tolerance {
+        Ok(curve.iter().rev().map(ModelCurve::reversed).collect())
+    } else {
+        Err(format!(
+            "does not run between its vertices (its ends are {:.3e} from them)",
+            forward.min(backward)
+        ))
     }
 }

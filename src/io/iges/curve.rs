@@ -129,14 +129,22 @@ impl Reader<'_> {
         let coords = self.numbers(de, &f, &mut i, 3 * n, "control point coordinate")?;
         let range = self.numbers(de, &f, &mut i, 2, "parameter range value")?;
         let points: Vec<Vec<Rational>> = coords.chunks_exact(3).map(<[_]>::to_vec).collect();
-        let curve = NurbsCurve::<4>::new(
-            m,
-            knots,
-            &points,
-            &weights,
-            Some([range[0].clone(), range[1].clone()]),
-        )
-        .map_err(|e| {
+        // Some writers put V0 = V1 (an empty range) on edges of their B-reps; such a curve is
+        // read on its whole knot domain, and said so. Whether that is the edge is checked
+        // where it is used: its loop must close.
+        let range = if range[0] == range[1] && knots.len() > n {
+            self.warnings.push(crate::model::Warning {
+                place: format!("directory entry {de}"),
+                message: format!(
+                    "the B-spline curve's range V0 = V1 = {} is empty: its whole knot domain is used",
+                    range[0].to_f64()
+                ),
+            });
+            None
+        } else {
+            Some([range[0].clone(), range[1].clone()])
+        };
+        let curve = NurbsCurve::<4>::new(m, knots, &points, &weights, range).map_err(|e| {
             let msg = match &e {
                 NurbsError::Decreasing { index, value, .. } => {
                     format!(

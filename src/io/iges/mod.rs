@@ -43,6 +43,8 @@ struct Reader<'a> {
     warnings: Vec<Warning>,
     /// Bézier control points the surfaces read so far split into.
     bezier_points: usize,
+    /// The minimum resolution the global section states (field 19).
+    resolution: Option<Rational>,
 }
 
 fn err_line(name: &str, line: usize, msg: impl Into<String>) -> ReadError {
@@ -257,8 +259,9 @@ pub(super) fn read(name: &str, bytes: &[u8]) -> Result<Model, ReadError> {
         params,
         warnings,
         bezier_points: 0,
+        resolution,
     };
-    r.read_model(resolution)
+    r.read_model()
 }
 
 impl Reader<'_> {
@@ -488,7 +491,7 @@ impl Reader<'_> {
         ))
     }
 
-    fn read_model(&mut self, resolution: Option<Rational>) -> Result<Model, ReadError> {
+    fn read_model(&mut self) -> Result<Model, ReadError> {
         let entries: Vec<(usize, DirEntry)> =
             self.dir.iter().map(|(k, v)| (*k, v.clone())).collect();
         let mut model = Model::from_patches(Format::Iges, Vec::new());
@@ -601,7 +604,7 @@ impl Reader<'_> {
         }
         model.surfaces = surfaces.len();
         model.warnings = std::mem::take(&mut self.warnings);
-        model.suggested_weld = resolution;
+        model.suggested_weld = self.resolution.clone();
         Ok(model)
     }
 

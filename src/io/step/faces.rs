@@ -930,6 +930,8 @@ impl Reader<'_> {
             domain,
             collapsed: [false; 4],
             closed: [false; 2],
+            // A plane's edges are projected onto it exactly.
+            inverter: None,
         })
     }
 

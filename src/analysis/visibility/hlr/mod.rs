@@ -272,7 +272,10 @@ fn drawing(model: &Model, view: &View, opts: &HlrOptions) -> Result<HiddenLines,
         assumptions.push(weld_assumption(d));
     }
     if scene.faces.iter().any(Option::is_some) {
-        assumptions.push(trim_assumption(scene.trim_contact));
+        assumptions.push(trim_assumption(
+            scene.trim_contact,
+            model.inversion_distance(),
+        ));
     }
     assumptions.extend(model.reader_assumptions());
     Ok(HiddenLines {
@@ -287,19 +290,28 @@ fn drawing(model: &Model, view: &View, opts: &HlrOptions) -> Result<HiddenLines,
 
 /// How near another face a point of a trimming curve is taken to lie on it: the weld
 /// distance, and at least 2^-30 of the model's diagonal (exact data meet exactly, and no
-/// interval test can prove a distance of zero).
+/// interval test can prove a distance of zero), and at least twice the bound of the curves
+/// inverted from model-space edges (the curves of one edge on its two faces are each within
+/// the bound of the edge, so within twice of each other; `proofs/edge-inversion.md`).
 fn trim_contact(model: &Model, weld: WeldTolerance) -> f64 {
     let floor = model.diagonal() * 2f64.powi(-30);
-    match weld {
+    let d = match weld {
         WeldTolerance::Absolute(d) => d.max(floor),
         WeldTolerance::Exact => floor,
-    }
+    };
+    d.max(2.0 * model.inversion_distance())
 }
 
-/// The assumption of a drawing on trimmed faces.
-pub fn trim_assumption(d: f64) -> String {
+/// The assumption of a drawing on trimmed faces with contact distance `d`, some of whose
+/// trimming curves were inverted from model-space edges within `inverted` (0: none).
+pub fn trim_assumption(d: f64, inverted: f64) -> String {
+    let made = if inverted > 0.0 {
+        format!(" (where the file gives an edge only in model space, limn's curve on the face is proven within {inverted:.3e} of it, and the face is the region that curve bounds)")
+    } else {
+        String::new()
+    };
     format!(
-        "faces meet only along the trimming curves the file gives them (the curves of a B-rep edge on its faces are one curve in space: it is drawn once and not searched for penetrations of the faces it bounds), and a point of a trimming curve is the same point as any point of another face within {d:.3e} of it (the faces meet there)"
+        "faces meet only along the trimming curves the file gives them{made} (the curves of a B-rep edge on its faces are one curve in space: it is drawn once and not searched for penetrations of the faces it bounds), and a point of a trimming curve is the same point as any point of another face within {d:.3e} of it (the faces meet there)"
     )
 }
 

@@ -92,6 +92,24 @@ pub(super) fn trim_lines(
             }
         }
     }
+    // An edge that runs along a side of a square on some face is drawn as that side, by the
+    // first such face (its pieces off the side too); other edges by their first face. Drawn
+    // by two faces, one edge would be two lines within the inversion bound of each other.
+    let mut drawer: BTreeMap<usize, usize> = edge_faces
+        .iter()
+        .filter_map(|(e, users)| users.first().map(|f| (*e, *f)))
+        .collect();
+    let mut on_side: std::collections::BTreeSet<usize> = std::collections::BTreeSet::new();
+    for trims in scene.faces.iter().flatten() {
+        for piece in &trims.pieces {
+            if let Some(e) = piece.edge {
+                if !on_side.contains(&e) && along_side(&piece.curve) {
+                    on_side.insert(e);
+                    drawer.insert(e, piece.face);
+                }
+            }
+        }
+    }
     // Chains: one per loop, numbered by (face, loop).
     let mut chains: BTreeMap<(usize, usize), usize> = BTreeMap::new();
     let n_existing = existing.len();
@@ -112,7 +130,8 @@ pub(super) fn trim_lines(
                         })
                         .filter(|q| *q != p)
                         .collect();
-                    (others, users.first() == Some(&piece.face))
+                    let drawn = piece.edge.and_then(|e| drawer.get(&e)) == Some(&piece.face);
+                    (others, drawn)
                 }
                 None => (Vec::new(), true),
             };
