@@ -138,8 +138,10 @@ fn the_fixtures_faces_loops_and_b_reps() {
         ("bug24012_face.igs", 1, 1, None),
         ("OCC8842_cylinder_Ideas.igs", 3, 3, Some((3, 3, 2, Some(0)))),
         ("OCC8842_cone_Ideas.igs", 2, 2, Some((2, 2, 2, Some(0)))),
-        // Loops with model-space edges only: topology read, faces untrimmed (reported).
-        ("occ22470.igs", 0, 0, Some((18, 44, 28, Some(0)))),
+        // Loops with model-space edges only: inverted onto the faces with a proven bound.
+        ("occ22470.igs", 18, 18, Some((18, 44, 28, Some(0)))),
+        // The spring's edges end 2.5e-3 from their vertices, or are circular arcs (100):
+        // topology read, faces untrimmed (reported).
         ("bug22869_Spring.igs", 0, 0, Some((6, 11, 7, Some(0)))),
         // A trim across the seam of a closed torus: untrimmed, reported.
         ("OCC26138_Torus.igs", 0, 0, None),
@@ -614,4 +616,34 @@ fn step_quasi_uniform_surfaces_have_their_implied_knots() {
     for (p, q) in a.patches.iter().zip(&b.patches) {
         assert_eq!(p.surface, q.surface);
     }
+}
+
+/// occ22470 gives its B-rep edges only in model space: each is inverted onto its two faces,
+/// every loop closes, and the bound is stated per loop (above the file's resolution, since
+/// the file's edges lie off their surfaces, and below 1e-4 of the part's size).
+#[test]
+fn model_space_edges_are_inverted_onto_their_faces_with_a_stated_bound() {
+    let m = read("occ22470.igs");
+    assert_eq!(m.faces.len(), 18);
+    let size = m.diagonal();
+    let mut inverted = 0;
+    for f in &m.faces {
+        for l in f.loops() {
+            assert!(l.inverted_curves > 0, "face {:?}", f.entity);
+            assert!(l.inversion_distance > 0.0 && l.inversion_distance <= 1e-4 * size);
+            // Every curve of the file's edges lies on an edge; only bridges have none.
+            for p in &l.pieces {
+                assert_eq!(p.edge.is_none(), p.bridge);
+            }
+            inverted += l.inverted_curves;
+        }
+    }
+    let largest = m
+        .faces
+        .iter()
+        .flat_map(|f| f.loops())
+        .map(|l| l.inversion_distance)
+        .fold(0.0, f64::max);
+    assert_eq!(m.inversion_distance(), largest);
+    assert!(inverted >= 44 * 2, "every edge on both its faces");
 }

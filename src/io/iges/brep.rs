@@ -297,8 +297,8 @@ impl Reader<'_> {
 
 /// The curve of an edge directed from its start vertex to its end vertex: IGES 504 defines the
 /// edge as the part of its curve between them, and some writers give the curve the other way
-/// round. `Err` when neither direction puts its ends within 1e-6 of the curve's size (and the
-/// largest inversion allowed, `io::trimmed`) of the vertices.
+/// round. `Err` when neither direction puts its ends within 1e-4 of the curve's size (the
+/// box of its control points) of the vertices.
 fn run_between(curve: Vec<ModelCurve>, ends: &[Point3; 2]) -> Result<Vec<ModelCurve>, String> {
     let f = |p: &[crate::number::Rational]| [p[0].to_f64(), p[1].to_f64(), p[2].to_f64()];
     let gap = |p: [f64; 3], q: &Point3| {
@@ -309,12 +309,18 @@ fn run_between(curve: Vec<ModelCurve>, ends: &[Point3; 2]) -> Result<Vec<ModelCu
         return Err("has no pieces".into());
     };
     let (start, end) = (f(&first.start()), f(&last.end()));
-    let size = (0..3)
-        .map(|k| (start[k] - end[k]).abs())
-        .fold(gap(start, &ends[0]).max(gap(end, &ends[1])), f64::max);
+    // The size of the curve: the largest side of the box of its control points.
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for p in curve.iter().flat_map(|c| c.points()) {
+        for (k, x) in f(&p).into_iter().enumerate() {
+            lo[k] = lo[k].min(x);
+            hi[k] = hi[k].max(x);
+        }
+    }
+    let size = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
     let forward = gap(start, &ends[0]).max(gap(end, &ends[1]));
     let backward = gap(start, &ends[1]).max(gap(end, &ends[0]));
-    let tolerance = 1e-5 * size.max(f64::MIN_POSITIVE);
+    let tolerance = 1e-4 * size.max(f64::MIN_POSITIVE);
     if forward <= backward && forward <= tolerance {
         Ok(curve)
     } else if backward <= tolerance {

@@ -133,13 +133,17 @@ impl Reader<'_> {
         // read on its whole knot domain, and said so. Whether that is the edge is checked
         // where it is used: its loop must close.
         let range = if range[0] == range[1] && knots.len() > n {
-            self.warnings.push(crate::model::Warning {
+            let warning = crate::model::Warning {
                 place: format!("directory entry {de}"),
                 message: format!(
                     "the B-spline curve's range V0 = V1 = {} is empty: its whole knot domain is used",
                     range[0].to_f64()
                 ),
-            });
+            };
+            // An edge's curve is read once per face that uses it: said once.
+            if !self.warnings.contains(&warning) {
+                self.warnings.push(warning);
+            }
             None
         } else {
             Some([range[0].clone(), range[1].clone()])
