@@ -48,7 +48,7 @@ use intersection_lines::{intersection_lines, silhouette_meets};
 use lines::candidate_lines;
 use pieces::all_pieces;
 use roles::line_roles;
-use trim_lines::trim_lines;
+use trim_lines::{brep_neighbours, trim_lines};
 
 use crate::analysis::contour::drawing::refined_for;
 use crate::analysis::contour::silhouette::silhouette_curves;
@@ -204,6 +204,17 @@ fn drawing(model: &Model, view: &View, opts: &HlrOptions) -> Result<HiddenLines,
     stats.trim_segments = trims.segments.len();
     stats.trim_crossings = trims.crossings;
     segments.extend(trims.segments);
+    // The faces around a B-rep face meet it only along their common edges and vertices.
+    let neighbours = brep_neighbours(model);
+    for s in &mut segments {
+        for (p, _, _) in &s.on {
+            for q in neighbours.get(*p).into_iter().flatten() {
+                if !s.touches.contains(q) {
+                    s.touches.push(*q);
+                }
+            }
+        }
+    }
     // 1c. The curves where patches pass through each other.
     // A file that states faces or a B-rep says its faces meet only along their edges (the
     // trim assumption): the curves where their untrimmed surfaces cross are not searched.
@@ -311,7 +322,7 @@ pub fn trim_assumption(d: f64, inverted: f64) -> String {
         String::new()
     };
     format!(
-        "faces meet only along the trimming curves the file gives them{made} (the curves of a B-rep edge on its faces are one curve in space: it is drawn once and not searched for penetrations of the faces it bounds), and a point of a trimming curve is the same point as any point of another face within {d:.3e} of it (the faces meet there)"
+        "faces meet only along the trimming curves the file gives them{made} (the curves of a B-rep edge on its faces are one curve in space: it is drawn once and not searched for penetrations of the faces it bounds; the lines of a B-rep face are not searched for penetrations of the faces that share an edge or a vertex with it), and a point of a trimming curve is the same point as any point of another face within {d:.3e} of it (the faces meet there)"
     )
 }
 

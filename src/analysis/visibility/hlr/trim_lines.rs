@@ -92,6 +92,26 @@ pub(super) fn trim_lines(
             }
         }
     }
+    // The faces at each B-rep vertex (by its exact point): a line on an edge meets the faces
+    // at its ends' vertices there, and (the B-rep assumption) nowhere else.
+    let ends = |e: usize| {
+        model
+            .brep
+            .as_ref()
+            .and_then(|b| b.edges.get(e))
+            .map(|b| &b.ends)
+    };
+    let mut vertex_faces: BTreeMap<&crate::surface::Point3, Vec<usize>> = BTreeMap::new();
+    for (e, users) in &edge_faces {
+        for v in ends(*e).into_iter().flatten() {
+            let at = vertex_faces.entry(v).or_default();
+            for f in users {
+                if !at.contains(f) {
+                    at.push(*f);
+                }
+            }
+        }
+    }
     // An edge that runs along a side of a square on some face is drawn as that side, by the
     // first such face (its pieces off the side too); other edges by their first face. Drawn
     // by two faces, one edge would be two lines within the inversion bound of each other.
@@ -120,7 +140,17 @@ pub(super) fn trim_lines(
         for piece in &trims.pieces {
             let (touches, drawn) = match piece.edge.and_then(|e| edge_faces.get(&e)) {
                 Some(users) => {
-                    let others: Vec<usize> = users
+                    let at_ends = piece
+                        .edge
+                        .and_then(ends)
+                        .into_iter()
+                        .flatten()
+                        .filter_map(|v| vertex_faces.get(v))
+                        .flatten();
+                    let mut faces: Vec<usize> = users.iter().chain(at_ends).copied().collect();
+                    faces.sort_unstable();
+                    faces.dedup();
+                    let others: Vec<usize> = faces
                         .iter()
                         .filter(|f| **f != piece.face)
                         .flat_map(|f| {
@@ -574,4 +604,61 @@ pub(super) fn point_at(c: &[Poly; 3], t: &Rational) -> Option<[Rational; 2]> {
             Rational::from(&c[1].eval(at) / &w),
         ]
     })
+}
+
+/// Per patch, the patches of the faces that share a B-rep edge or vertex with a face on the
+/// patch's surface (empty without a B-rep). By the B-rep assumption those faces meet the
+/// patch's faces only along their common edges and vertices, which are drawn and decided as
+/// lines and vertices: the patch's lines are not searched for penetrations of them.
+pub(super) fn brep_neighbours(model: &Model) -> Vec<Vec<usize>> {
+    let mut out = vec![Vec::new(); model.patches.len()];
+    let Some(brep) = &model.brep else {
+        return out;
+    };
+    // The surfaces on each edge, and at each vertex.
+    let mut at_edge: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
+    for face in &model.faces {
+        for e in face.loops().flat_map(|l| &l.pieces).filter_map(|p| p.edge) {
+            let s = at_edge.entry(e).or_default();
+            if !s.contains(&face.surface) {
+                s.push(face.surface);
+            }
+        }
+    }
+    let mut at_vertex: BTreeMap<&crate::surface::Point3, Vec<usize>> = BTreeMap::new();
+    for (e, surfaces) in &at_edge {
+        for v in brep.edges.get(*e).into_iter().flat_map(|b| &b.ends) {
+            let s = at_vertex.entry(v).or_default();
+            s.extend(
+                surfaces
+                    .iter()
+                    .filter(|x| !s.contains(x))
+                    .copied()
+                    .collect::<Vec<_>>(),
+            );
+        }
+    }
+    let mut neighbours: BTreeMap<usize, std::collections::BTreeSet<usize>> = BTreeMap::new();
+    for group in at_edge.values().chain(at_vertex.values()) {
+        for a in group {
+            for b in group.iter().filter(|b| *b != a) {
+                neighbours.entry(*a).or_default().insert(*b);
+            }
+        }
+    }
+    let mut patches_of: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
+    for (q, patch) in model.patches.iter().enumerate() {
+        patches_of.entry(patch.source.surface).or_default().push(q);
+    }
+    for (p, patch) in model.patches.iter().enumerate() {
+        if let Some(n) = neighbours.get(&patch.source.surface) {
+            out[p] = n
+                .iter()
+                .filter_map(|s| patches_of.get(s))
+                .flatten()
+                .copied()
+                .collect();
+        }
+    }
+    out
 }
