@@ -224,3 +224,30 @@ fn welding_never_merges_points_beyond_the_f64_range() {
     assert_eq!(v["topology"]["closed"], false);
     std::fs::remove_file(&path).ok();
 }
+
+/// occ22470's B-rep edges are model-space curves only: `limn info` reports every face
+/// trimmed, the curves made by inverting the edges and the proven bound (JSON and text).
+#[test]
+fn model_space_edges_are_reported_inverted_with_their_bound() {
+    let v = info("fixtures/iges/occt/occ22470.igs", &[]);
+    let f = &v["faces"];
+    assert_eq!(f["faces"], 18);
+    assert_eq!(f["untrimmed_surfaces"], 0);
+    let inverted = f["inverted_curves"].as_u64().unwrap();
+    let bound = f["inversion_distance"].as_f64().unwrap();
+    assert!(inverted >= 88, "{inverted}");
+    // Above the file's resolution (its edges lie off their faces), below 1e-4 of its size.
+    assert!(bound > 1e-5 && bound < 2e-2, "{bound}");
+    let out = Command::new(env!("CARGO_BIN_EXE_limn"))
+        .args(["info", "fixtures/iges/occt/occ22470.igs"])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("run limn");
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains(&format!(
+            "inverted edges: {inverted} trimming curves made from model-space edges"
+        )),
+        "{text}"
+    );
+}
