@@ -610,10 +610,13 @@ impl Inverter {
             if sa.iter().any(|i| sb.contains(i)) {
                 continue;
             }
-            let (ia, ib) = (sa[0], sb[0]);
+            // Samples are snapped or clamped into the domain, so each lies in a span.
+            let (Some(&ia), Some(&ib), Some(&last)) = (sa.first(), sb.first(), sa.last()) else {
+                return Ok(None);
+            };
             // The knot between them next to a.
             let knot = if ib > ia {
-                self.spans[d][*sa.last().expect("nonempty")][1].clone()
+                self.spans[d][last][1].clone()
             } else {
                 self.spans[d][ia][0].clone()
             };
