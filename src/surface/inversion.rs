@@ -186,6 +186,27 @@ fn least_squares(su: [f64; 3], sv: [f64; 3], r: [f64; 3]) -> Option<[f64; 2]> {
     Some([(c * x - b * y) / det, (a * y - b * x) / det])
 }
 
+/// Bits of the grid in a span's unit coordinate that constructed coordinates are put on.
+const GRID_BITS: i32 = 32;
+
+/// The point of the span `s` (exact; `sf` in f64) nearest `x` on the grid of `2^-GRID_BITS`
+/// of its width, exact: `s₀ + k 2^-GRID_BITS (s₁ − s₀)`, clamped into the span. The pieces'
+/// control points, the exact data every later step computes with, then have small
+/// denominators in the span's unit coordinates (a dyadic of 32 bits) rather than a 53-bit
+/// f64 over a decimal knot span; the grid moves a point by at most `2^-33` of the span, and
+/// the bound is proven for the points as they are.
+fn on_grid(x: f64, s: &[Rational; 2], sf: [f64; 2]) -> Rational {
+    let scale = 2f64.powi(GRID_BITS);
+    let unit = ((x - sf[0]) / (sf[1] - sf[0])).clamp(0.0, 1.0);
+    let k = (unit * scale).round();
+    if !k.is_finite() {
+        return s[0].clone();
+    }
+    let k = Rational::from_f64(k).unwrap_or_default() / Rational::from(1u64 << GRID_BITS);
+    let w = Rational::from(&s[1] - &s[0]);
+    clamp(Rational::from(&s[0] + &(k * w)), s)
+}
+
 /// The index of the span of `spans` containing `x`, clamped to the first or last.
 fn span_of(spans: &[[f64; 2]], x: f64) -> usize {
     spans
@@ -433,7 +454,7 @@ impl Inverter {
             };
             match knots.position(|k| (uv[d] - k).abs() <= near) {
                 Some(k) => exact(k),
-                None => Rational::from_f64(uv[d]).unwrap_or_default(),
+                None => on_grid(uv[d], &s[span_of(sf, uv[d])], sf[span_of(sf, uv[d])]),
             }
         })
     }
@@ -562,14 +583,8 @@ impl Inverter {
         let secant = [(b.uv[0] - a.uv[0]) / h, (b.uv[1] - a.uv[1]) / h];
         let (ta, tb) = (a.tangent.unwrap_or(secant), b.tangent.unwrap_or(secant));
         let s = [&self.spans[0][span.0], &self.spans[1][span.1]];
-        let inner = |p: [f64; 2]| -> [Rational; 2] {
-            [0, 1].map(|d| {
-                clamp(
-                    Rational::from_f64(p[d]).unwrap_or_else(|| s[d][0].clone()),
-                    s[d],
-                )
-            })
-        };
+        let sf = [self.spans_f64[0][span.0], self.spans_f64[1][span.1]];
+        let inner = |p: [f64; 2]| -> [Rational; 2] { [0, 1].map(|d| on_grid(p[d], s[d], sf[d])) };
         let mut p1 = inner([a.uv[0] + h / 3.0 * ta[0], a.uv[1] + h / 3.0 * ta[1]]);
         let mut p2 = inner([b.uv[0] - h / 3.0 * tb[0], b.uv[1] - h / 3.0 * tb[1]]);
         // Both ends on one knot line (snapped): the whole piece runs along it.
