@@ -39,14 +39,7 @@ fn collapsed_sides(pieces: &[BezierPiece]) -> [bool; 4] {
     };
     let (lu, lv) = (last(0), last(1));
     let approx = |p: &Point3| p.each_ref().map(|c| c.to_f64());
-    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-    for p in pieces.iter().flat_map(|(_, patch)| patch.points()) {
-        for (k, c) in approx(p).into_iter().enumerate() {
-            lo[k] = lo[k].min(c);
-            hi[k] = hi[k].max(c);
-        }
-    }
-    let size = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
+    let size = RationalPatch::control_size(pieces.iter().map(|(_, p)| p));
     let tolerance = COLLAPSED_SIDE * size;
     let near = |a: &Point3, b: &Point3| {
         a == b

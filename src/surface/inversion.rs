@@ -28,19 +28,19 @@ const SEED_GRID: usize = 6;
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum InversionError {
     /// The nearest point of the surface found (f64) is farther than the target allows.
-    #[error("the curve passes {distance:.3e} from the surface (the nearest point found, at curve parameter {at:.6}), more than the {target:.3e} allowed")]
+    #[error("the curve passes {distance:.3e} from the surface (the nearest point found, at parameter {at:.6} of a Bézier piece of it), more than the {allowed:.3e} allowed")]
     OffSurface {
         /// The distance found (Euclidean).
         distance: f64,
-        /// Where on the curve (its Bézier piece's index plus the parameter in it).
+        /// Where on the curve: the parameter in its Bézier piece.
         at: f64,
-        /// The target.
-        target: f64,
+        /// The largest Euclidean distance the target allows (√3 times the max-norm target).
+        allowed: f64,
     },
     /// The bound did not reach the target within the splitting limits.
     #[error("its inversion onto the surface was proven only within {bound:.3e}, more than the {target:.3e} allowed")]
     NotProven {
-        /// The smallest bound reached on the piece that failed.
+        /// The bound reached on the piece that failed (infinite when none was computed).
         bound: f64,
         /// The target.
         target: f64,
@@ -145,11 +145,7 @@ impl CurveF64 {
     /// The point and its derivative at `t`.
     fn at(&self, t: f64) -> ([f64; 3], [f64; 3]) {
         let w = self.c[3].eval(&[t]);
-        let dw = if self.d[3].degrees()[0] == 0 && self.c[3].degrees()[0] == 0 {
-            0.0
-        } else {
-            self.d[3].eval(&[t])
-        };
+        let dw = self.d[3].eval(&[t]);
         let mut p = [0.0; 3];
         let mut dp = [0.0; 3];
         for k in 0..3 {
@@ -264,15 +260,7 @@ impl Inverter {
                 .map(|s| [s[0].to_f64(), s[1].to_f64()])
                 .collect()
         });
-        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-        for p in pieces.iter().flat_map(|(_, p)| p.points()) {
-            for k in 0..3 {
-                let c = p[k].to_f64();
-                lo[k] = lo[k].min(c);
-                hi[k] = hi[k].max(c);
-            }
-        }
-        let size = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
+        let size = RationalPatch::control_size(pieces.iter().map(|(_, p)| p));
         Some(Inverter {
             size,
             spans,
@@ -477,7 +465,7 @@ impl Inverter {
             return Err(InversionError::OffSurface {
                 distance: dist,
                 at: t,
-                target: limit,
+                allowed: limit,
             });
         }
         // A move of 1/10 of the limit along u or v moves the point by about that much.

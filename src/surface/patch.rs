@@ -274,6 +274,20 @@ impl RationalPatch {
         [lo, hi]
     }
 
+    /// The largest side (in f64) of the box of the control points of `patches` (0 for none):
+    /// the size relative tolerances on a surface are measured against.
+    pub fn control_size<'a>(patches: impl IntoIterator<Item = &'a RationalPatch>) -> f64 {
+        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for p in patches.into_iter().flat_map(|p| &p.points) {
+            for k in 0..3 {
+                let c = p[k].to_f64();
+                lo[k] = lo[k].min(c);
+                hi[k] = hi[k].max(c);
+            }
+        }
+        (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max)
+    }
+
     /// The same patch with every control point mapped by `f` (an affine map keeps the
     /// rational surface the image of the original under that map; weights are unchanged).
     pub fn map_points(&self, f: impl Fn(&Point3) -> Point3) -> RationalPatch {

@@ -253,3 +253,67 @@ fn faces_side_by_side_are_adjacent_with_the_assumption_stated() {
     );
     assert!(!pieces.iter().any(|p| p["kind"] == "intersection"));
 }
+
+/// With a B-rep, a face's lines are not searched for penetrations of the faces sharing an edge
+/// or vertex with it, and the report says so; where edges were inverted onto their faces, it
+/// states the bound, and the contact distance covers twice it.
+#[test]
+fn b_rep_neighbours_and_inverted_edges_are_stated_assumptions() {
+    let (code, out, err) = limn(&[
+        "hlr",
+        "fixtures/iges/occt/OCC8842_cone_Ideas.igs",
+        "--dir",
+        "1,2,3",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(code, Some(0), "{err}");
+    let r: Value = serde_json::from_str(&out).unwrap();
+    let said = r["assumptions"].to_string();
+    assert!(
+        said.contains("faces that share an edge or a vertex with it"),
+        "{said}"
+    );
+    // The cone's faces meet only along their edges: no pair is reported passing through.
+    assert_eq!(r["intersecting_patches"], serde_json::json!([]));
+    assert!(r["pieces"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .all(|p| p["certified"] == true));
+    let (code, out, err) = limn(&[
+        "hlr",
+        "fixtures/iges/occt/occ22470.igs",
+        "--dir",
+        "1,2,3",
+        "--format",
+        "json",
+        "--time-limit",
+        "2",
+    ]);
+    assert_eq!(code, Some(0), "{err}");
+    let r: Value = serde_json::from_str(&out).unwrap();
+    let said: Vec<String> = r["assumptions"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|a| a.as_str().unwrap().to_string())
+        .collect();
+    let trim = said
+        .iter()
+        .find(|a| a.contains("limn's curve on the face is proven within"))
+        .expect("the inversion bound is stated");
+    // "proven within E of it" and "within D of it (the faces meet there)", D >= 2 E.
+    let number_after = |key: &str| -> f64 {
+        let at = trim.find(key).unwrap() + key.len();
+        trim[at..]
+            .split_whitespace()
+            .next()
+            .unwrap()
+            .parse()
+            .unwrap()
+    };
+    let e = number_after("proven within ");
+    let d = number_after("other face within ");
+    assert!(e > 0.0 && d >= 2.0 * e, "{trim}");
+}

@@ -76,8 +76,8 @@ pub(super) struct Segment {
     /// For a trimming curve: the curve `(U, V, W)` in the patch's parameters, in the
     /// segment's parameter `t` (`(u, v) = (U/W, V/W)`).
     pub(super) curve: Option<[Poly; 3]>,
-    /// Other patches the segment lies on without being a curve of theirs (the faces across a
-    /// B-rep edge): not searched for penetrations.
+    /// Patches the segment is not searched against for penetrations: those of the faces that
+    /// share a B-rep edge or vertex with its face ([`super::trim_lines::brep_neighbours`]).
     pub(super) touches: Vec<usize>,
     /// For an intersection curve of two patches: its variables are `(u, v, s, t)`, the
     /// parameters of `patch` then of the other ([`Meet`]).

@@ -13,10 +13,11 @@
 //! silhouette arcs, as shared vertices: between cuts a line of a trimmed patch meets no loop,
 //! so it lies in the faces or outside them as a whole (decided per piece, `pieces.rs`).
 //!
-//! A piece on a B-rep edge is drawn once, from the first face that uses the edge; the
-//! patches of the other faces on it are recorded as touched (the B-rep assumption: faces
-//! meet along their shared edges, so the edge is not searched for penetrations of them).
-//! A piece along a side of the square is that side, drawn as the side.
+//! A piece on a B-rep edge is drawn once: as a side of a square when it runs along one on some
+//! face, else from the first face that uses the edge. A piece along a side of the square is
+//! that side, drawn as the side. Which faces a line is not searched against for penetrations
+//! (the faces sharing an edge or vertex with its face: the B-rep assumption) is
+//! [`brep_neighbours`].
 
 use crate::analysis::contour::curves::Silhouette;
 use crate::analysis::projection::ImagePolys;
@@ -92,26 +93,6 @@ pub(super) fn trim_lines(
             }
         }
     }
-    // The faces at each B-rep vertex (by its exact point): a line on an edge meets the faces
-    // at its ends' vertices there, and (the B-rep assumption) nowhere else.
-    let ends = |e: usize| {
-        model
-            .brep
-            .as_ref()
-            .and_then(|b| b.edges.get(e))
-            .map(|b| &b.ends)
-    };
-    let mut vertex_faces: BTreeMap<&crate::surface::Point3, Vec<usize>> = BTreeMap::new();
-    for (e, users) in &edge_faces {
-        for v in ends(*e).into_iter().flatten() {
-            let at = vertex_faces.entry(v).or_default();
-            for f in users {
-                if !at.contains(f) {
-                    at.push(*f);
-                }
-            }
-        }
-    }
     // An edge that runs along a side of a square on some face is drawn as that side, by the
     // first such face (its pieces off the side too); other edges by their first face. Drawn
     // by two faces, one edge would be two lines within the inversion bound of each other.
@@ -138,33 +119,9 @@ pub(super) fn trim_lines(
             continue;
         };
         for piece in &trims.pieces {
-            let (touches, drawn) = match piece.edge.and_then(|e| edge_faces.get(&e)) {
-                Some(users) => {
-                    let at_ends = piece
-                        .edge
-                        .and_then(ends)
-                        .into_iter()
-                        .flatten()
-                        .filter_map(|v| vertex_faces.get(v))
-                        .flatten();
-                    let mut faces: Vec<usize> = users.iter().chain(at_ends).copied().collect();
-                    faces.sort_unstable();
-                    faces.dedup();
-                    let others: Vec<usize> = faces
-                        .iter()
-                        .filter(|f| **f != piece.face)
-                        .flat_map(|f| {
-                            let s = model.faces[*f].surface;
-                            (0..model.patches.len())
-                                .filter(move |q| model.patches[*q].source.surface == s)
-                        })
-                        .filter(|q| *q != p)
-                        .collect();
-                    let drawn = piece.edge.and_then(|e| drawer.get(&e)) == Some(&piece.face);
-                    (others, drawn)
-                }
-                None => (Vec::new(), true),
-            };
+            let drawn = piece
+                .edge
+                .is_none_or(|e| drawer.get(&e) == Some(&piece.face));
             if !drawn && !along_side(&piece.curve) {
                 continue;
             }
@@ -172,18 +129,8 @@ pub(super) fn trim_lines(
             let chain = *chains.entry((piece.face, piece.at.0)).or_insert(next_chain);
             let c: [Poly; 3] = piece.curve.clone();
             let sides = side_polys(&c);
-            if let Some(k) = sides.iter().position(Poly::is_zero) {
-                // Along a side of the square: drawn as that side, which then touches the
-                // faces across the B-rep edge too.
-                let edge = [Edge::U0, Edge::U1, Edge::V0, Edge::V1][k];
-                if let Some((class, _)) = class_of(scene, p, edge) {
-                    let side = &mut existing[class];
-                    for q in &touches {
-                        if !side.touches.contains(q) {
-                            side.touches.push(*q);
-                        }
-                    }
-                }
+            if sides.iter().any(Poly::is_zero) {
+                // Along a side of the square: drawn as that side.
                 continue;
             }
             let enclosed = c.clone().map(|x| x.convert::<Interval>(Precision::F64));
@@ -310,7 +257,7 @@ pub(super) fn trim_lines(
                     on: vec![(p, None, false)],
                     line: None,
                     curve: Some(c.clone()),
-                    touches: touches.clone(),
+                    touches: Vec::new(),
                     meet: None,
                 };
                 // 3. Its crossings with the patch's silhouette, cutting the arcs and lines.
