@@ -301,16 +301,17 @@ fn drawing(model: &Model, view: &View, opts: &HlrOptions) -> Result<HiddenLines,
 
 /// How near another face a point of a trimming curve is taken to lie on it: the weld
 /// distance, and at least 2^-30 of the model's diagonal (exact data meet exactly, and no
-/// interval test can prove a distance of zero), and at least twice the bound of the curves
-/// inverted from model-space edges (the curves of one edge on its two faces are each within
-/// the bound of the edge, so within twice of each other; `proofs/edge-inversion.md`).
+/// interval test can prove a distance of zero), and at least `2√3` times the bound of the
+/// curves inverted from model-space edges (the curves of one edge on its two faces are each
+/// within the bound of the edge in the max norm, so within twice of each other, and `√3` times
+/// that in the Euclidean distance the contact test measures; `proofs/edge-inversion.md`).
 fn trim_contact(model: &Model, weld: WeldTolerance) -> f64 {
     let floor = model.diagonal() * 2f64.powi(-30);
     let d = match weld {
         WeldTolerance::Absolute(d) => d.max(floor),
         WeldTolerance::Exact => floor,
     };
-    d.max(2.0 * model.inversion_distance())
+    d.max(2.0 * 3f64.sqrt() * model.inversion_distance())
 }
 
 /// The assumption of a drawing on trimmed faces with contact distance `d`, some of whose
