@@ -313,3 +313,63 @@ fn a_drawing_with_faces_left_out_states_it() {
         h.assumptions
     );
 }
+
+/// The upper plate with two corners rounded off: the loop's fillets are conic arcs tangent to
+/// the square's sides at both ends, ending on the sides at non-dyadic parameters, their
+/// interval enclosures poking past the sides near their ends. In the image each fillet leaves
+/// its side tangentially, so no solver separates the two there: only lemma I can, around the
+/// shared vertex, on an injective box that reaches past the square
+/// (`proofs/hidden-lines.md`). Every piece certified, and the sides drawn only along the loop.
+#[test]
+fn fillets_tangent_to_the_sides_are_certified() {
+    use limn::surface::ParameterCurve;
+    let mut m = Model::from_patches(
+        Format::Json,
+        vec![
+            plate([-1, 1], [-1, 1], 0),
+            plate([-2, 0], [-2, 2], -1),
+            plate([0, 2], [-2, 2], -1),
+        ],
+    );
+    for p in &mut m.patches {
+        p.source.parameters = Some(unit());
+    }
+    let pt = |u: (i64, i64), v: (i64, i64)| vec![q(u.0, u.1), q(v.0, v.1)];
+    let line = |a: Vec<_>, b: Vec<_>| ParameterCurve::segment(&a, &b);
+    let fillet = |a: Vec<_>, c: Vec<_>, b: Vec<_>| {
+        ParameterCurve::new(&[a, c, b], &[q(1, 1), q(7, 10), q(1, 1)]).unwrap()
+    };
+    let outer = crate::trim_models::closed(vec![
+        line(pt((0, 1), (0, 1)), pt((2, 3), (0, 1))),
+        fillet(pt((2, 3), (0, 1)), pt((1, 1), (0, 1)), pt((1, 1), (1, 3))),
+        line(pt((1, 1), (1, 3)), pt((1, 1), (1, 1))),
+        line(pt((1, 1), (1, 1)), pt((1, 3), (1, 1))),
+        fillet(pt((1, 3), (1, 1)), pt((0, 1), (1, 1)), pt((0, 1), (2, 3))),
+        line(pt((0, 1), (2, 3)), pt((0, 1), (0, 1))),
+    ]);
+    let model = with_face(m, 0, Some(outer), Vec::new());
+    let h = drawing(&model, 1e-6);
+    let uncertified: Vec<_> = h.pieces.iter().filter(|p| !p.certified).collect();
+    assert!(uncertified.is_empty(), "unresolved: {uncertified:#?}");
+    // The fillets are drawn, in front of everything.
+    let trims: Vec<_> = h
+        .pieces
+        .iter()
+        .filter(|p| p.kind == LineKind::Trim)
+        .collect();
+    assert!(!trims.is_empty());
+    assert!(trims.iter().all(|p| p.qi == Some(0)));
+    // The upper plate's sides are drawn only where the loop runs along them: none of their
+    // points in the two cut-off corners.
+    for p in h
+        .pieces
+        .iter()
+        .filter(|p| p.patch == 0 && p.kind == LineKind::Boundary)
+    {
+        for &(_, u, v) in &p.points_uv {
+            let corner = (u > 2.0 / 3.0 + 1e-9 && v < 1.0 / 3.0 - 1e-9)
+                || (u < 1.0 / 3.0 - 1e-9 && v > 2.0 / 3.0 + 1e-9);
+            assert!(!corner, "side point ({u}, {v}) off the face");
+        }
+    }
+}

@@ -58,18 +58,26 @@ const MARGINS: std::ops::RangeInclusive<u32> = 3..=22;
 const COARSE_TRIES: u32 = 3;
 
 /// A box `[lo − 2^-k, hi + 2^-k] ∩ [0, 1]²` (k in [`MARGINS`]) on which `holds` is true, or
+/// `None` ([`first_margin`]).
+pub(crate) fn first_box_around(
+    lo: &[Rational; 2],
+    hi: &[Rational; 2],
+    holds: impl FnMut(&DyadicBoxN) -> bool,
+) -> Option<DyadicBoxN> {
+    first_margin(|k| box_around(lo, hi, k), holds)
+}
+/// The box built at the first margin `2^-k` (k in [`MARGINS`]) on which `holds` is true, or
 /// `None`. The coarsest few are tried in turn; then the finest, and if it does not hold
 /// either, none is tried further (a test on a box rarely holds where it fails on a box
 /// inside it); otherwise the margin is bisected between the last failure and the finest.
 /// Any box returned is one on which `holds` was evaluated true: which one it is is a matter
 /// of cost and reach, never of soundness.
-pub(crate) fn first_box_around(
-    lo: &[Rational; 2],
-    hi: &[Rational; 2],
-    mut holds: impl FnMut(&DyadicBoxN) -> bool,
-) -> Option<DyadicBoxN> {
+fn first_margin<B>(
+    build: impl Fn(u32) -> Option<B>,
+    mut holds: impl FnMut(&B) -> bool,
+) -> Option<B> {
     let (first, last) = (*MARGINS.start(), *MARGINS.end());
-    let mut test = |k: u32| box_around(lo, hi, k).filter(|b| holds(b));
+    let mut test = |k: u32| build(k).filter(|b| holds(b));
     for k in first..first + COARSE_TRIES {
         if let Some(b) = test(k) {
             return Some(b);
@@ -120,6 +128,45 @@ pub fn injective_box_around(
         let r: Vec<Interval> = jac.iter().map(|p| range_on(p, &lo, &hi)).collect();
         let det = r[0].mul(&r[3]).sub(&r[1].mul(&r[2]));
         det.lo() > 0.0 || det.hi() < 0.0
+    })
+}
+/// A box of f64 corners (`[[u_lo, u_hi], [v_lo, v_hi]]`) around the parameter box `[lo, hi]`
+/// with margins `2^-k`, **not** cut to the unit square, on which the image map of patch `j` —
+/// its polynomials, which extend past their square — is injective: the denominator `q` has no
+/// zero on it and the interval Jacobian is regular (`proofs/ray-count.md`, "Injective box";
+/// past the square `q > 0` is not known, so `q ≠ 0` is proven on the box). A vertex on a side
+/// of the square then lies inside the box, with room on every side for the lines that meet
+/// there (`proofs/hidden-lines.md`, lemma I). `None` if no margin does.
+pub fn injective_box_past(
+    scene: &Scene,
+    j: usize,
+    lo: &[Rational; 2],
+    hi: &[Rational; 2],
+) -> Option<[[f64; 2]; 2]> {
+    let jac: Vec<Bernstein<Interval>> = scene.jacobians[j]
+        .iter()
+        .flatten()
+        .map(|p| p.convert(Precision::F64))
+        .collect();
+    let q: Bernstein<Interval> = scene.images[j].q.convert(Precision::F64);
+    let lo = lo
+        .clone()
+        .map(|x| Interval::from_rational(&x, Precision::F64).lo());
+    let hi = hi
+        .clone()
+        .map(|x| Interval::from_rational(&x, Precision::F64).hi());
+    let build = |k: u32| -> Option<[[f64; 2]; 2]> {
+        let m = (2f64).powi(-(k as i32));
+        let b = [[lo[0] - m, hi[0] + m], [lo[1] - m, hi[1] + m]];
+        b.iter().flatten().all(|x| x.is_finite()).then_some(b)
+    };
+    first_margin(build, |b| {
+        let (lo, hi) = ([b[0][0], b[1][0]], [b[0][1], b[1][1]]);
+        if !strict(&range_on(&q, &lo, &hi)) {
+            return false;
+        }
+        let r: Vec<Interval> = jac.iter().map(|p| range_on(p, &lo, &hi)).collect();
+        strict(&r[0].mul(&r[3]).sub(&r[1].mul(&r[2])))
     })
 }
 /// The jet of `k / q` from the jets of `k` and `q` (q > 0), by differentiating `k = f q`.

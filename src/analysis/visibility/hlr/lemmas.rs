@@ -2,12 +2,12 @@
 //! that holds no crossing other than the shared points (`proofs/hidden-lines.md`).
 
 use crate::analysis::visibility::sheets::{
-    fold_box_around, injective_box_around, quotient_jet, range_on,
+    fold_box_around, injective_box_past, quotient_jet, range_on,
 };
 
 use crate::analysis::visibility::hlr::lines::{
-    dyadic_ceil, dyadic_floor, find_monotone, monotone_along, narrow_to_curve, strict_sign,
-    sub_domain, Key, Segment, Vertex,
+    dyadic_ceil, dyadic_floor, find_monotone, monotone_along, narrow_to_curve, param_box,
+    strict_sign, sub_domain, Key, Segment, Vertex,
 };
 use crate::analysis::visibility::hlr::result::LineKind;
 use crate::analysis::visibility::scene::Scene;
@@ -55,13 +55,18 @@ pub(super) fn vertex_exclusion(
         let fold = [a, b]
             .iter()
             .any(|s| s.kind == LineKind::Silhouette && s.patch == *p);
+        // The injective box may reach past the square: a vertex on its side then has room
+        // around it on every side (lemma I).
         let bx = if fold {
-            fold_box_around(scene, *p, &lo, &hi)
+            fold_box_around(scene, *p, &lo, &hi).map(|b| param_box(&b))
         } else {
-            injective_box_around(scene, *p, &lo, &hi)
+            injective_box_past(scene, *p, &lo, &hi)
         };
         if let Some(bx) = bx {
-            if let (Some(da), Some(db)) = (sub_domain(a, *p, &bx), sub_domain(b, *p, &bx)) {
+            if let (Some(da), Some(db)) = (
+                sub_domain(a, *p, &bx, Some(va.param)),
+                sub_domain(b, *p, &bx, Some(vb.param)),
+            ) {
                 return Some(da.into_iter().chain(db).collect());
             }
         }
@@ -196,7 +201,7 @@ pub(super) fn arc_fold_exclusion(
     cover
         .iter()
         .filter_map(|(d, bx)| {
-            let near = sub_domain(other, arc.patch, bx)?;
+            let near = sub_domain(other, arc.patch, &param_box(bx), None)?;
             Some(if arc_first {
                 d.iter().copied().chain(near).collect()
             } else {

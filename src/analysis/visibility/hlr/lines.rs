@@ -670,10 +670,33 @@ pub(super) fn narrow_to_curve(g: &Poly, domain: &DyadicBoxN, axis: usize) -> Dya
     out
 }
 
+/// A box of a patch's parameters, `[[u_lo, u_hi], [v_lo, v_hi]]` in f64, that may reach past
+/// the unit square: a box on which a lemma about the patch's polynomials (which extend past
+/// their square) is proven.
+pub(super) type ParamBox = [[f64; 2]; 2];
+
+/// The f64 box inside a dyadic box (corners rounded inwards).
+pub(super) fn param_box(b: &DyadicBoxN) -> ParamBox {
+    [0, 1].map(|a| [b[a].0.to_f64_bounds().1, b[a].1.to_f64_bounds().0])
+}
+
+/// The dyadic interval (40 bits) inside `x ∩ [0, 1]`, if it is not empty.
+fn dyadic_within(x: [f64; 2]) -> Option<(Dyadic, Dyadic)> {
+    let (lo, hi) = (dyadic_above(x[0]), dyadic_below(x[1]));
+    (x[0] <= 1.0 && x[1] >= 0.0 && lo <= hi).then_some((lo, hi))
+}
+
 /// The part of a segment's domain that lies in the parameter box `b` of patch `p`, if the
-/// segment lies on `p` and meets `b`.
-pub(super) fn sub_domain(s: &Segment, p: usize, b: &DyadicBoxN) -> Option<DyadicBoxN> {
+/// segment lies on `p` and meets `b`; for a trimming curve, the run of its parameter inside
+/// `b` that holds the parameter interval `near` (if given; else the longest run).
+pub(super) fn sub_domain(
+    s: &Segment,
+    p: usize,
+    b: &ParamBox,
+    near: Option<[f64; 2]>,
+) -> Option<DyadicBoxN> {
     let &(_, edge, rev) = s.on.iter().find(|x| x.0 == p)?;
+    let within = |a: usize| dyadic_within(b[a]);
     if let Some(m) = &s.meet {
         // The variables of patch p among (u, v, s, t): the first pair or the second.
         let offset = if p == s.patch {
@@ -684,27 +707,36 @@ pub(super) fn sub_domain(s: &Segment, p: usize, b: &DyadicBoxN) -> Option<Dyadic
             return None;
         };
         let mut d = s.domain.clone();
-        for (x, y) in d[offset..offset + 2].iter_mut().zip(b) {
+        for (a, x) in d[offset..offset + 2].iter_mut().enumerate() {
+            let y = within(a)?;
             *x = (x.0.max(y.0), x.1.min(y.1));
         }
         return d.iter().all(|(l, h)| l < h).then_some(d);
     }
     if let Some(c) = &s.curve {
-        return crate::analysis::visibility::hlr::trim_lines::curve_sub_domain(s, c, b);
+        return crate::analysis::visibility::hlr::trim_lines::curve_sub_domain(s, c, b, near);
     }
+    // Whether an exact coordinate lies in the box's interval along `axis`.
+    let holds = |axis: usize, at: Dyadic| {
+        let (l, h) = at.to_f64_bounds();
+        b[axis][0] <= l && h <= b[axis][1]
+    };
     if let Some((axis, at)) = s.line {
-        if !(b[axis].0 <= at && at <= b[axis].1) {
+        if !holds(axis, at) {
             return None;
         }
-        let (lo, hi) = b[1 - axis];
+        let (lo, hi) = within(1 - axis)?;
         let (lo, hi) = (lo.max(s.domain[0].0), hi.min(s.domain[0].1));
         return (lo < hi).then(|| vec![(lo, hi)]);
     }
     match edge {
         None => {
             let d: DyadicBoxN = (0..2)
-                .map(|a| (s.domain[a].0.max(b[a].0), s.domain[a].1.min(b[a].1)))
-                .collect();
+                .map(|a| {
+                    let (l, h) = within(a)?;
+                    Some((s.domain[a].0.max(l), s.domain[a].1.min(h)))
+                })
+                .collect::<Option<_>>()?;
             d.iter().all(|(l, h)| l < h).then_some(d)
         }
         Some(e) => {
@@ -715,11 +747,10 @@ pub(super) fn sub_domain(s: &Segment, p: usize, b: &DyadicBoxN) -> Option<Dyadic
                 Edge::U0 => (0, false),
                 Edge::U1 => (0, true),
             };
-            let c = if at_one { Dyadic::ONE } else { Dyadic::ZERO };
-            if !(b[fixed].0 <= c && c <= b[fixed].1) {
+            if !holds(fixed, if at_one { Dyadic::ONE } else { Dyadic::ZERO }) {
                 return None;
             }
-            let (lo, hi) = b[1 - fixed];
+            let (lo, hi) = within(1 - fixed)?;
             let (lo, hi) = if rev {
                 (hi.one_minus(), lo.one_minus())
             } else {

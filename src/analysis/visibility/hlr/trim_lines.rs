@@ -23,7 +23,7 @@ use crate::analysis::contour::curves::Silhouette;
 use crate::analysis::projection::ImagePolys;
 use crate::analysis::visibility::hlr::crossings::Event;
 use crate::analysis::visibility::hlr::lines::{
-    bounds_on, class_of, find_monotone, side_uv, tangent_polys_side, Key, Segment, Vertex,
+    bounds_on, class_of, find_monotone, side_uv, tangent_polys_side, Key, ParamBox, Segment, Vertex,
 };
 use crate::analysis::visibility::hlr::result::LineKind;
 use crate::analysis::visibility::scene::Scene;
@@ -501,24 +501,40 @@ fn split_monotone(s: Segment, depth: u32, next_id: &mut usize) -> Vec<Segment> {
     out
 }
 
+/// How finely a trimming segment's domain is halved where it straddles the boundary of a box
+/// its part in the box is sought in: down to `2^-SUB_DOMAIN_DEPTH` of the domain.
+const SUB_DOMAIN_DEPTH: u32 = 40;
+
+/// How many pieces that search looks at, at most.
+const SUB_DOMAIN_PIECES: usize = 4096;
+
 /// A part of a trimming segment's domain whose points lie in the parameter box `b` of its
-/// patch: the longest run of dyadic sub-intervals (bisection, up to 2^-10 of the domain)
-/// whose curve enclosures lie in `b`; `None` if there is none.
-pub(super) fn curve_sub_domain(s: &Segment, c: &[Poly; 3], b: &DyadicBoxN) -> Option<DyadicBoxN> {
-    let inside = |r: &Rect| {
-        (0..2).all(|k| r.axis(k)[0] >= b[k].0.to_f64() && r.axis(k)[1] <= b[k].1.to_f64())
-    };
-    let misses =
-        |r: &Rect| (0..2).any(|k| r.axis(k)[1] < b[k].0.to_f64() || r.axis(k)[0] > b[k].1.to_f64());
+/// patch (which may reach past the square): a run of dyadic sub-intervals, found by
+/// bisection where they straddle the box's boundary, whose curve enclosures lie in `b`. The
+/// run that meets the parameter interval `near` if there is one (the vertex a lemma is
+/// applied at), else the longest; `None` if there is none.
+pub(super) fn curve_sub_domain(
+    s: &Segment,
+    c: &[Poly; 3],
+    b: &ParamBox,
+    near: Option<[f64; 2]>,
+) -> Option<DyadicBoxN> {
+    let inside = |r: &Rect| (0..2).all(|k| r.axis(k)[0] >= b[k][0] && r.axis(k)[1] <= b[k][1]);
+    let misses = |r: &Rect| (0..2).any(|k| r.axis(k)[1] < b[k][0] || r.axis(k)[0] > b[k][1]);
     let mut kept: Vec<(Dyadic, Dyadic)> = Vec::new();
     let mut stack = vec![(s.domain[0], 0u32)];
+    let mut looked = 0usize;
     while let Some(((lo, hi), depth)) = stack.pop() {
+        looked += 1;
+        if looked > SUB_DOMAIN_PIECES {
+            break;
+        }
         let Some(r) = curve_box(c, (lo, hi)) else {
             continue;
         };
         if inside(&r) {
             kept.push((lo, hi));
-        } else if !misses(&r) && depth < 10 {
+        } else if !misses(&r) && depth < SUB_DOMAIN_DEPTH {
             if let Some(mid) = lo.midpoint(hi) {
                 stack.push(((lo, mid), depth + 1));
                 stack.push(((mid, hi), depth + 1));
@@ -526,19 +542,26 @@ pub(super) fn curve_sub_domain(s: &Segment, c: &[Poly; 3], b: &DyadicBoxN) -> Op
         }
     }
     kept.sort();
-    let mut best: Option<(Dyadic, Dyadic)> = None;
-    let mut run: Option<(Dyadic, Dyadic)> = None;
+    let mut runs: Vec<(Dyadic, Dyadic)> = Vec::new();
     for (lo, hi) in kept {
-        run = match run {
-            Some((a, z)) if z == lo => Some((a, hi)),
-            _ => Some((lo, hi)),
-        };
-        let len = |x: (Dyadic, Dyadic)| x.1.to_f64() - x.0.to_f64();
-        if best.is_none_or(|x| len(run.expect("set")) > len(x)) {
-            best = run;
+        match runs.last_mut() {
+            Some(last) if last.1 == lo => last.1 = hi,
+            _ => runs.push((lo, hi)),
         }
     }
-    best.map(|x| vec![x])
+    let len = |x: &(Dyadic, Dyadic)| x.1.to_f64() - x.0.to_f64();
+    let meets =
+        |x: &(Dyadic, Dyadic)| near.is_some_and(|n| x.0.to_f64() <= n[1] && n[0] <= x.1.to_f64());
+    let longest = |it: &mut dyn Iterator<Item = (Dyadic, Dyadic)>| {
+        it.max_by(|x, y| {
+            len(x)
+                .partial_cmp(&len(y))
+                .unwrap_or(std::cmp::Ordering::Equal)
+        })
+    };
+    longest(&mut runs.iter().copied().filter(|x| meets(x)))
+        .or_else(|| longest(&mut runs.iter().copied()))
+        .map(|x| vec![x])
 }
 
 /// The point of a trimming segment at an exact parameter, in its patch's parameters.
