@@ -106,6 +106,10 @@ pub(super) fn crossings(
     let same_run = |a: usize, b: usize| run_of[a].iter().any(|r| run_of[b].contains(r));
     let mut jobs: Vec<Job> = Vec::new();
     for (a, sa) in segments.iter().enumerate() {
+        // A segment another line draws whole is no line of the drawing.
+        if sa.drawn_elsewhere(sa.range) {
+            continue;
+        }
         // Past the deadline, the pairs (a', b) with a ≤ a' < b and the penetrations and
         // self-crossings of the segments from a on are not searched: those segments are
         // unresolved (every pair not searched has both members among them).
@@ -136,6 +140,9 @@ pub(super) fn crossings(
             (Some(_), None) => events[a].push(Event::unresolved(sa.range, Reason::OutlineCusp)),
         }
         for (b, sb) in segments.iter().enumerate().skip(a + 1) {
+            if sb.drawn_elsewhere(sb.range) {
+                continue;
+            }
             if !sa.bounds.meets_image(&sb.bounds) {
                 stats.culled_pairs += 1;
                 continue;
@@ -405,6 +412,12 @@ impl Event {
 /// Whether the points of a segment over a box of its variables are proven outside its
 /// patch's trimmed faces (never for a trimming curve, which bounds them).
 fn outside_faces(scene: &Scene, s: &Segment, bx: &[[f64; 2]]) -> bool {
+    // A stretch another line draws is not a line here either.
+    if let [t] = bx {
+        if s.drawn_elsewhere(*t) {
+            return true;
+        }
+    }
     if s.curve.is_some() || !scene.trimmed(s.patch) {
         return false;
     }

@@ -204,6 +204,7 @@ pub(super) fn intersection_lines(
                         line: None,
                         curve: None,
                         touches: Vec::new(),
+                        elsewhere: Vec::new(),
                         meet: Some(meet.clone()),
                     });
                 }

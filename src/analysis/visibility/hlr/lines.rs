@@ -79,6 +79,11 @@ pub(super) struct Segment {
     /// Patches the segment is not searched against for penetrations: those of the faces that
     /// share a B-rep edge or vertex with its face ([`super::trim_lines::brep_neighbours`]).
     pub(super) touches: Vec<usize>,
+    /// Stretches of a side (parameter intervals, bounds rounded inwards) that run along a
+    /// B-rep edge another face's line draws ([`super::trim_lines`]): not lines of the
+    /// drawing, so neither drawn nor cutting others (the B-rep assumption: the faces meet
+    /// along that edge, which is drawn and cuts once).
+    pub(super) elsewhere: Vec<[f64; 2]>,
     /// For an intersection curve of two patches: its variables are `(u, v, s, t)`, the
     /// parameters of `patch` then of the other ([`Meet`]).
     pub(super) meet: Option<std::sync::Arc<Meet>>,
@@ -131,6 +136,14 @@ pub(super) struct Vertex {
     pub(super) param: [f64; 2],
     /// Its parameter box on each patch it lies on: `(patch, lo, hi)`.
     pub(super) uv: Vec<(usize, [Rational; 2], [Rational; 2])>,
+}
+
+impl Segment {
+    /// Whether the parameter interval `t` lies in a stretch drawn by another line
+    /// ([`Segment::elsewhere`]).
+    pub(super) fn drawn_elsewhere(&self, t: [f64; 2]) -> bool {
+        self.elsewhere.iter().any(|e| e[0] <= t[0] && t[1] <= e[1])
+    }
 }
 
 impl Key {
@@ -525,6 +538,7 @@ fn silhouette_segments(
                     line: None,
                     curve: None,
                     touches: Vec::new(),
+                    elsewhere: Vec::new(),
                     meet: None,
                 };
                 // Along the branch, vertex a comes first.
@@ -933,6 +947,7 @@ fn exact_curve(
         line,
         curve: None,
         touches: Vec::new(),
+        elsewhere: Vec::new(),
         meet: None,
     }
 }

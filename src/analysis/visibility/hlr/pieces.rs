@@ -328,6 +328,9 @@ pub(crate) fn pieces_of(
 /// Whether every point of a segment over `[p0, p1]` of its parameter is proven outside its
 /// patch's trimmed faces (never for a trimming curve).
 fn stretch_outside(scene: &Scene, s: &Segment, [p0, p1]: [f64; 2]) -> bool {
+    if s.drawn_elsewhere([p0, p1]) {
+        return true;
+    }
     if s.curve.is_some() || !scene.trimmed(s.patch) {
         return false;
     }
@@ -435,6 +438,10 @@ pub(crate) fn qi_of(
 ) -> Result<Option<(usize, Option<Behind>)>, Reason> {
     if opts.curve.past_deadline() {
         return Err(Reason::TimeLimit);
+    }
+    // A stretch along a B-rep edge another face's line draws is not drawn here.
+    if s.drawn_elsewhere([p0, p1]) {
+        return Ok(None);
     }
     let w = p1 - p0;
     let mut last = Reason::NoSample;

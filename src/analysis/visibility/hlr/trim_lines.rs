@@ -30,7 +30,7 @@ use crate::analysis::visibility::scene::Scene;
 use crate::bernstein::{compose_homogeneous, Poly};
 use crate::geometry::Rect;
 use crate::model::Model;
-use crate::number::{Interval, Precision, Rational};
+use crate::number::{Interval, Number, Precision, Rational};
 use crate::reason::Reason;
 use crate::solver::dyadic::Dyadic;
 use crate::solver::point_in_face::{self, curve_misses_box};
@@ -114,6 +114,8 @@ pub(super) fn trim_lines(
     // Chains: one per loop, numbered by (face, loop).
     let mut chains: BTreeMap<(usize, usize), usize> = BTreeMap::new();
     let n_existing = existing.len();
+    // By side class, the exact stretches drawn by another face's line.
+    let mut elsewhere: BTreeMap<usize, Vec<(Rational, Rational)>> = BTreeMap::new();
     for p in 0..scene.faces.len() {
         let Some(Some(trims)) = scene.faces.get(p) else {
             continue;
@@ -129,8 +131,33 @@ pub(super) fn trim_lines(
             let chain = *chains.entry((piece.face, piece.at.0)).or_insert(next_chain);
             let c: [Poly; 3] = piece.curve.clone();
             let sides = side_polys(&c);
-            if sides.iter().any(Poly::is_zero) {
-                // Along a side of the square: drawn as that side.
+            if let Some(k) = sides.iter().position(Poly::is_zero) {
+                // Along a side of the square: drawn as that side, unless the edge is another
+                // face's line; then that stretch of the side is not a line of the drawing.
+                if !drawn {
+                    let edge = [Edge::U0, Edge::U1, Edge::V0, Edge::V1][k];
+                    let n = model.faces[piece.face]
+                        .loops()
+                        .nth(piece.at.0)
+                        .map_or(1, |l| l.pieces.len());
+                    let joint = |k: usize| Key::Joint {
+                        face: piece.face,
+                        lp: piece.at.0,
+                        k,
+                    };
+                    let keys = [joint(piece.at.1), joint((piece.at.1 + 1) % n)];
+                    let drawer_face = piece.edge.and_then(|e| drawer.get(&e).copied());
+                    along_elsewhere(
+                        scene,
+                        model,
+                        (p, edge),
+                        &c,
+                        keys,
+                        drawer_face,
+                        existing,
+                        &mut elsewhere,
+                    );
+                }
                 continue;
             }
             let enclosed = c.clone().map(|x| x.convert::<Interval>(Precision::F64));
@@ -258,6 +285,7 @@ pub(super) fn trim_lines(
                     line: None,
                     curve: Some(c.clone()),
                     touches: Vec::new(),
+                    elsewhere: Vec::new(),
                     meet: None,
                 };
                 // 3. Its crossings with the patch's silhouette, cutting the arcs and lines.
@@ -283,6 +311,29 @@ pub(super) fn trim_lines(
             }
         }
     }
+    // The stretches drawn elsewhere, merged where they abut (exactly, at a joint), with
+    // bounds rounded inwards.
+    for (class, mut stretches) in elsewhere {
+        stretches.sort();
+        let mut merged: Vec<(Rational, Rational)> = Vec::new();
+        for (lo, hi) in stretches {
+            match merged.last_mut() {
+                Some(last) if lo <= last.1 => {
+                    if hi > last.1 {
+                        last.1 = hi;
+                    }
+                }
+                _ => merged.push((lo, hi)),
+            }
+        }
+        for (lo, hi) in merged {
+            let lo = Interval::from_rational(&lo, Precision::F64).hi();
+            let hi = Interval::from_rational(&hi, Precision::F64).lo();
+            if lo < hi {
+                existing[class].elsewhere.push([lo, hi]);
+            }
+        }
+    }
     // Along each loop, the segments in order of piece and parameter.
     let mut by_chain: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
     for (k, s) in out.segments.iter().enumerate() {
@@ -300,6 +351,71 @@ pub(super) fn trim_lines(
         }
     }
     out
+}
+
+/// A loop piece `c` of a face that runs along side `edge` of patch `p` on a B-rep edge whose
+/// line another face (`drawer`) draws: the side's stretch between the piece's ends (which the
+/// piece covers, being connected) is recorded in `elsewhere` under the side's class, and each
+/// end inside the side (a joint of the loop, `keys`) becomes a vertex of the side. Nothing is
+/// recorded when a patch of the drawing face is itself a user of the side: then the side is
+/// the drawn line.
+#[allow(clippy::too_many_arguments)]
+fn along_elsewhere(
+    scene: &Scene,
+    model: &Model,
+    (p, edge): (usize, Edge),
+    c: &[Poly; 3],
+    keys: [Key; 2],
+    drawer: Option<usize>,
+    existing: &mut [Segment],
+    elsewhere: &mut BTreeMap<usize, Vec<(Rational, Rational)>>,
+) {
+    let Some((class, rev)) = class_of(scene, p, edge) else {
+        return;
+    };
+    let side = &mut existing[class];
+    let drawn_here = side.on.iter().any(|(q, _, _)| {
+        let surface = model.patches[*q].source.surface;
+        model
+            .faces
+            .iter()
+            .enumerate()
+            .any(|(f, face)| face.surface == surface && Some(f) == drawer)
+    });
+    if drawn_here {
+        return;
+    }
+    let free = match edge {
+        Edge::U0 | Edge::U1 => 1,
+        Edge::V0 | Edge::V1 => 0,
+    };
+    let mut ends: Vec<(Rational, Key)> = Vec::new();
+    for (t, key) in [0, 1].into_iter().zip(keys) {
+        let Some(x) = point_at(c, &Rational::from(t)) else {
+            return;
+        };
+        let x = x[free].clone();
+        // In the side's parameter.
+        let x = if rev { Rational::from(1 - &x) } else { x };
+        ends.push((x, key));
+    }
+    ends.sort_by(|a, b| a.0.cmp(&b.0));
+    let (zero, one) = (Rational::from(0), Rational::from(1));
+    let lo = ends[0].0.clone().max(zero.clone());
+    let hi = ends[1].0.clone().min(one.clone());
+    if lo >= hi {
+        return;
+    }
+    for (x, key) in ends {
+        if x <= zero || x >= one || side.vertices.iter().any(|v| v.key.matches(&key)) {
+            continue;
+        }
+        let i = Interval::from_rational(&x, Precision::F64);
+        let param = [i.lo(), i.hi()];
+        let uv = side_uv(&side.on, param);
+        side.vertices.push(Vertex { key, param, uv });
+    }
+    elsewhere.entry(class).or_default().push((lo, hi));
 }
 
 /// Whether a piece runs along a side of the square.
