@@ -18,9 +18,9 @@ fn plate(x: [i64; 2], y: [i64; 2], z: i64) -> RationalPatch {
     .unwrap()
 }
 
-/// The plate `[-1, 1]²` at z = 0 with a hole of radius 1/2 about the origin (1/4 in its
-/// parameters), above the plate `[-2, 2]²` at z = -1 made of two patches meeting at x = 0.
-fn holed_plate_above_another() -> Model {
+/// The plate `[-1, 1]²` at z = 0 above the plate `[-2, 2]²` at z = -1 made of two patches
+/// meeting at x = 0, every patch's parameter box the unit square.
+fn plate_above_another() -> Model {
     let mut m = Model::from_patches(
         Format::Json,
         vec![
@@ -32,6 +32,13 @@ fn holed_plate_above_another() -> Model {
     for p in &mut m.patches {
         p.source.parameters = Some(unit());
     }
+    m
+}
+
+/// The plate `[-1, 1]²` at z = 0 with a hole of radius 1/2 about the origin (1/4 in its
+/// parameters), above the plate `[-2, 2]²` at z = -1 made of two patches meeting at x = 0.
+fn holed_plate_above_another() -> Model {
+    let m = plate_above_another();
     let hole = circle([q(1, 2), q(1, 2)], q(1, 4), true);
     with_face(m, 0, None, vec![hole])
 }
@@ -323,17 +330,7 @@ fn a_drawing_with_faces_left_out_states_it() {
 #[test]
 fn fillets_tangent_to_the_sides_are_certified() {
     use limn::surface::ParameterCurve;
-    let mut m = Model::from_patches(
-        Format::Json,
-        vec![
-            plate([-1, 1], [-1, 1], 0),
-            plate([-2, 0], [-2, 2], -1),
-            plate([0, 2], [-2, 2], -1),
-        ],
-    );
-    for p in &mut m.patches {
-        p.source.parameters = Some(unit());
-    }
+    let m = plate_above_another();
     let pt = |u: (i64, i64), v: (i64, i64)| vec![q(u.0, u.1), q(v.0, v.1)];
     let line = |a: Vec<_>, b: Vec<_>| ParameterCurve::segment(&a, &b);
     let fillet = |a: Vec<_>, c: Vec<_>, b: Vec<_>| {
