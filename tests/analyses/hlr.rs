@@ -684,3 +684,102 @@ fn a_long_exact_eye_respects_the_time_limit() {
     assert!(took.as_secs_f64() < 60.0, "{took:?}");
     println!("an eye of 10,000 digits under a 0.5 s limit: {took:?}");
 }
+
+/// Two plates in `z = 0` side by side along `x = 1`, the second's side not welded to the
+/// first's: (a) the same segment at degree 2 (its exact elevation), (b) bulged by 5·10⁻⁷ out of
+/// the plane, (c) along the lower half of the first's side only (a T-junction). A third plate
+/// at `z = 1` over `[1/2, 3/2] × [−1, 1/2]` hides part of them. The second's side lies wholly
+/// along the first's (a side contact): it is no line of the drawing, and the first's side is
+/// drawn once. Every piece is checked against the analytic count: a point `(x, y, 0)` is hidden
+/// exactly when its ray meets the third plate. Before side contacts of patches sharing a
+/// corner, cases (a) and (c) left the two sides' crossings unresolved.
+#[test]
+fn sides_along_each_other_without_a_weld_are_drawn_once() {
+    let r = |n: i64, d: i64| Rational::from((n, d));
+    let p = |x: Rational, y: Rational, z: Rational| [x, y, z];
+    let plate = |x0: Rational, x1: Rational, y0: Rational, y1: Rational, z: Rational| {
+        RationalPatch::polynomial(
+            [1, 1],
+            vec![
+                p(x0.clone(), y0.clone(), z.clone()),
+                p(x0.clone(), y1.clone(), z.clone()),
+                p(x1.clone(), y0, z.clone()),
+                p(x1, y1, z),
+            ],
+        )
+        .unwrap()
+    };
+    let first = |y1: i64| plate(q(0), q(1), q(0), q(y1), q(0));
+    let second = |bulge: Rational| {
+        RationalPatch::polynomial(
+            [1, 2],
+            vec![
+                p(q(1), q(0), q(0)),
+                p(q(1), r(1, 2), bulge),
+                p(q(1), q(1), q(0)),
+                p(q(2), q(0), q(0)),
+                p(q(2), r(1, 2), q(0)),
+                p(q(2), q(1), q(0)),
+            ],
+        )
+        .unwrap()
+    };
+    let cover = plate(r(1, 2), r(3, 2), q(-1), r(1, 2), q(1));
+    // With the union of the two lower plates, as [x0, x1, y0, y1] rectangles.
+    let cases = [
+        ("elevated", first(1), second(q(0)), 1.0),
+        ("bulged", first(1), second(r(1, 1_000_000)), 1.0),
+        (
+            "T-junction",
+            first(2),
+            plate(q(1), q(2), q(0), q(1), q(0)),
+            2.0,
+        ),
+    ];
+    for (what, a, b, top) in cases {
+        let lower = [[0.0, 1.0, 0.0, top], [1.0, 2.0, 0.0, 1.0]];
+        for dir in [[1, 2, -30], [-2, 1, -25], [3, -1, -20], [1, 1, 40]] {
+            let h = run(vec![a.clone(), b.clone(), cover.clone()], dir);
+            let said = h.assumptions.join(" ");
+            assert!(
+                said.contains("1 of those sides lie wholly along the other side"),
+                "{what} {dir:?}: {said}"
+            );
+            assert!(
+                !h.pieces
+                    .iter()
+                    .any(|x| x.patch == 1 && x.edge == Some(limn::surface::Edge::U0)),
+                "{what} {dir:?}: the second's side is drawn"
+            );
+            let along: f64 = h
+                .pieces
+                .iter()
+                .filter(|x| x.patch == 0 && x.edge == Some(limn::surface::Edge::U1))
+                .map(|x| x.param[1] - x.param[0])
+                .sum();
+            assert!((along - 1.0).abs() < 1e-9, "{what} {dir:?}: {along}");
+            let d = dir.map(|x| x as f64);
+            for x in &h.pieces {
+                assert!(x.certified, "{what} {dir:?}: {x:?}");
+                let m = x.points[x.points.len() / 2];
+                // The ray from the point toward the viewer, `m − t d`, meets the other level
+                // (z = 1 from the lower plates, z = 0 from the cover) at `t = (m_z − z)/d_z`,
+                // in front where `t > 0`.
+                let z = if x.patch == 2 { 0.0 } else { 1.0 };
+                let t = (m[2] - z) / d[2];
+                let (cx, cy) = (m[0] - t * d[0], m[1] - t * d[1]);
+                let inside =
+                    |r: &[f64; 4]| (r[0]..=r[1]).contains(&cx) && (r[2]..=r[3]).contains(&cy);
+                let want = usize::from(
+                    t > 0.0
+                        && if x.patch == 2 {
+                            lower.iter().any(inside)
+                        } else {
+                            inside(&[0.5, 1.5, -1.0, 0.5])
+                        },
+                );
+                assert_eq!(x.qi, Some(want), "{what} {dir:?}: {x:?} at {m:?}");
+            }
+        }
+    }
+}
