@@ -179,7 +179,7 @@ pub(crate) fn print_info(
     if let Some(c) = info.side_contacts.as_ref().filter(|c| !c.pairs.is_empty()) {
         writeln!(
             out,
-            "side contacts: {} pairs of patches whose sides run along each other within {:.1e} without being welded as one edge (largest gap {:.1e}): taken as adjacent",
+            "side contacts: {} pairs of patches whose sides run along each other within {:.1e} without a common corner (largest gap {:.1e}): taken as adjacent",
             c.pairs.len(),
             c.tolerance,
             c.largest_gap

@@ -33,7 +33,7 @@ pub struct ModelInfo {
     pub bounding_box: Option<BoundingBox>,
     /// Patch topology (absent for a mesh-only model).
     pub topology: Option<PatchTopology>,
-    /// Patch sides that run along another patch's side without being welded as one edge (absent for
+    /// Patch sides that run along another patch's side without a common corner (absent for
     /// a model with trimmed faces or without patches): the analyses take those pairs as
     /// adjacent, and say so in their assumptions.
     pub side_contacts: Option<super::ContactSummary>,

@@ -12,8 +12,8 @@ pub use face::{
 };
 pub use info::{default_weld, BoundingBox, FacesSummary, ModelInfo};
 pub use side_contact::{
-    contact_assumption, contact_tolerance, covered_sides, model_contacts, side_contacts,
-    ContactSummary, SideContact,
+    contact_assumption, contact_tolerance, model_contacts, side_contacts, ContactSummary,
+    SideContact,
 };
 
 pub use topology::{MeshTopology, PatchAdjacency, PatchTopology, SideUse, WeldTolerance};

@@ -1,11 +1,9 @@
 //! Patch sides that run along another patch's side without being welded as one edge: the
 //! faces of a surface model written side by side with gaps larger than its stated resolution,
-//! sides of different degrees or parametrizations along one curve, or meeting at T-junctions
-//! (a side of one patch along part of a side of another).
+//! or meeting at T-junctions (a side of one patch along part of a side of another).
 //!
-//! The weld ([`super::PatchAdjacency`]) matches corners and whole sides (control point by
-//! control point) within a tolerance; two sides that meet only like this are no welded edge,
-//! and two patches that share no corner besides have nothing that tells the analyses that
+//! The weld ([`super::PatchAdjacency`]) matches corners and whole sides within a tolerance;
+//! two patches that meet only like this share no corner, so nothing tells the analyses that
 //! they are neighbours. Their untrimmed surfaces then touch or cross along the common side,
 //! where no certified solver can separate them (the intersection curve runs in the domain's
 //! boundary, often tangentially). A measured side contact makes such a pair adjacent, with
@@ -26,10 +24,6 @@ pub struct SideContact {
     /// The largest distance measured between a sampled point of the stretch and the other
     /// side (model units, floating point).
     pub gap: f64,
-    /// Per side, whether all of it (every sample, ends included) lies within the tolerance of
-    /// the other side: the two sides are one edge (both), or the side is a part of the other
-    /// one's (a T-junction).
-    pub whole: [bool; 2],
 }
 
 /// The side contacts of a model, as `limn info` reports them.
@@ -67,9 +61,9 @@ pub fn contact_tolerance(weld: Option<f64>, diagonal: f64) -> f64 {
     weld.unwrap_or(0.0).max(1e-5 * diagonal)
 }
 
-/// The side contacts of a model's patch sides that are not welded as one edge, with the
-/// tolerance they were measured with ([`contact_tolerance`]); none for a model with trimmed
-/// faces (their patches' sides are not the faces' boundaries).
+/// The side contacts of a model's patches that share no welded corner, with the tolerance
+/// they were measured with ([`contact_tolerance`]); none for a model with trimmed faces
+/// (their patches' sides are not the faces' boundaries).
 pub fn model_contacts(
     model: &Model,
     adjacency: &PatchAdjacency,
@@ -80,21 +74,16 @@ pub fn model_contacts(
         return (Vec::new(), tol);
     }
     let surfaces: Vec<&RationalPatch> = model.patches.iter().map(|p| &p.surface).collect();
-    let found = side_contacts(
-        &surfaces,
-        |p, a, q, b| adjacency.same_edge((p, a), (q, b)),
-        tol,
-    );
+    let found = side_contacts(&surfaces, |a, b| adjacency.shares_corner(a, b), tol);
     (found, tol)
 }
 
-/// The side contacts of patch sides that are not one edge already (`welded(p, a, q, b)` says
-/// whether side `a` of patch `p` and side `b` of patch `q` are): a stretch of one side (at
-/// least 3 consecutive of 17 samples) within `tol` of a side of the other; the first such
-/// pair of sides of each pair of patches.
+/// The side contacts of patches that share no corner (`adjacent` says which pairs already
+/// do): a stretch of one side (at least 3 consecutive of 17 samples)
+/// within `tol` of a side of the other.
 pub fn side_contacts(
     patches: &[&RationalPatch],
-    welded: impl Fn(usize, Edge, usize, Edge) -> bool,
+    adjacent: impl Fn(usize, usize) -> bool,
     tol: f64,
 ) -> Vec<SideContact> {
     let draw: Vec<DrawPatch> = patches.iter().map(|p| DrawPatch::new(p)).collect();
@@ -119,35 +108,35 @@ pub fn side_contacts(
     let mut out = Vec::new();
     for p in 0..patches.len() {
         for q in p + 1..patches.len() {
+            if adjacent(p, q) {
+                continue;
+            }
             'sides: for (a, ea) in Edge::ALL.into_iter().enumerate() {
                 for (b, eb) in Edge::ALL.into_iter().enumerate() {
                     let (i, j) = (4 * p + a, 4 * q + b);
                     // A side collapsed to a point (a pole, an apex) touches, it runs along
                     // nothing.
-                    if welded(p, ea, q, eb)
-                        || !boxes_meet(&boxes[i], &boxes[j])
+                    if !boxes_meet(&boxes[i], &boxes[j])
                         || collapsed(&samples[i], tol)
                         || collapsed(&samples[j], tol)
                     {
                         continue;
                     }
-                    let from_p = may_stretch(&samples[i], &boxes[j])
-                        .then(|| stretch_gap(&samples[i], &samples[j], &draw[q], eb, tol))
-                        .flatten();
-                    let from_q = may_stretch(&samples[j], &boxes[i])
-                        .then(|| stretch_gap(&samples[j], &samples[i], &draw[p], ea, tol))
-                        .flatten();
-                    let gap = [from_p, from_q]
-                        .iter()
-                        .flatten()
-                        .map(|s| s.gap)
-                        .reduce(f64::max);
-                    if let Some(gap) = gap {
+                    let from_p = || {
+                        may_stretch(&samples[i], &boxes[j])
+                            .then(|| stretch_gap(&samples[i], &samples[j], &draw[q], eb, tol))
+                            .flatten()
+                    };
+                    let from_q = || {
+                        may_stretch(&samples[j], &boxes[i])
+                            .then(|| stretch_gap(&samples[j], &samples[i], &draw[p], ea, tol))
+                            .flatten()
+                    };
+                    if let Some(gap) = from_p().or_else(from_q) {
                         out.push(SideContact {
                             patches: [p, q],
                             sides: [ea, eb],
                             gap,
-                            whole: [from_p, from_q].map(|s| s.is_some_and(|s| s.whole)),
                         });
                         break 'sides;
                     }
@@ -158,33 +147,8 @@ pub fn side_contacts(
     out
 }
 
-/// The sides that another side draws: of two sides in contact that are one edge (each
-/// wholly within the tolerance of the other), the side of the second patch; of a side wholly
-/// along a part of another (a T-junction), the shorter one. A side is only given to a side
-/// that is drawn itself when the contact is taken (contacts in order), so that every side
-/// given away is drawn, through a chain of such sides, by one that is not: the drawing keeps
-/// one line of each edge.
-pub fn covered_sides(contacts: &[SideContact]) -> Vec<(usize, Edge)> {
-    let mut out: Vec<(usize, Edge)> = Vec::new();
-    for c in contacts {
-        let side = |k: usize| (c.patches[k], c.sides[k]);
-        let given = match c.whole {
-            [_, true] => Some((side(1), side(0))),
-            [true, false] => Some((side(0), side(1))),
-            [false, false] => None,
-        };
-        if let Some((covered, by)) = given {
-            if !out.contains(&by) && !out.contains(&covered) {
-                out.push(covered);
-            }
-        }
-    }
-    out
-}
-
-/// The stated assumption of a report that takes side contacts as adjacency; with `covered`
-/// the number of sides not drawn because another side draws them ([`covered_sides`]).
-pub fn contact_assumption(contacts: &[SideContact], tol: f64, covered: usize) -> String {
+/// The stated assumption of a report that takes side contacts as adjacency.
+pub fn contact_assumption(contacts: &[SideContact], tol: f64) -> String {
     let largest = contacts.iter().map(|c| c.gap).fold(0.0f64, f64::max);
     let pairs: Vec<String> = contacts
         .iter()
@@ -192,15 +156,8 @@ pub fn contact_assumption(contacts: &[SideContact], tol: f64, covered: usize) ->
         .map(|c| format!("{} and {}", c.patches[0], c.patches[1]))
         .collect();
     let more = if contacts.len() > 8 { ", …" } else { "" };
-    let drawn = if covered > 0 {
-        format!(
-            "; {covered} of those sides lie wholly along the other side and are not drawn: the other side is their line, and a point of the other patch within {tol:.1e} of a point of such a side is that point"
-        )
-    } else {
-        String::new()
-    };
     format!(
-        "{} pairs of patches whose sides run along each other within {tol:.1e} without being welded as one edge (patches {}{more}; largest gap measured {largest:.1e}, in floating point) meet along those sides and do not cross each other elsewhere, as patches sharing an edge: their intersection is not searched{drawn}",
+        "{} pairs of patches whose sides run along each other within {tol:.1e} without a common corner (patches {}{more}; largest gap measured {largest:.1e}, in floating point) meet along those sides and do not cross each other elsewhere, as patches sharing an edge: their intersection is not searched",
         contacts.len(),
         pairs.join(", ")
     )
@@ -262,25 +219,16 @@ fn may_stretch(side: &[[f64; 3]], other: &[[f64; 2]; 3]) -> bool {
     false
 }
 
-/// A stretch of a side within the tolerance of another side.
-#[derive(Clone, Copy, Debug)]
-struct Stretch {
-    /// The largest distance measured from its samples to the other side.
-    gap: f64,
-    /// Whether it is the whole side (every sample).
-    whole: bool,
-}
-
-/// The longest stretch of [`STRETCH`] or more consecutive samples of a side (`side`: its
-/// points at `COARSE + 1` parameters, every other one a sample) within `tol` of side `eb` of
-/// `b` (`coarse`: its points), if there is one.
+/// The largest distance from the samples of a stretch of a side (`side`: its points at
+/// `COARSE + 1` parameters, every other one a sample) to side `eb` of `b` (`coarse`: its
+/// points), if a stretch of [`STRETCH`] consecutive samples lies within `tol` of it.
 fn stretch_gap(
     side: &[[f64; 3]],
     coarse: &[[f64; 3]],
     b: &DrawPatch,
     eb: Edge,
     tol: f64,
-) -> Option<Stretch> {
+) -> Option<f64> {
     let on_b = |t: f64| {
         let (u, v) = side_point(eb, t);
         b.eval(u, v)
@@ -314,10 +262,7 @@ fn stretch_gap(
             gap = 0.0;
         }
     }
-    (best_run >= STRETCH).then_some(Stretch {
-        gap: best_gap,
-        whole: best_run == SAMPLES,
-    })
+    (best_run >= STRETCH).then_some(best_gap)
 }
 
 /// The distance from `x` to a side: the nearest coarse sample, refined by a ternary search
@@ -366,40 +311,14 @@ mod tests {
         let small = plane(2, 3, 0, 1, gap.clone());
         let far = plane(5, 6, 0, 1, Rational::new());
         let patches = [&big, &small, &far];
-        let found = side_contacts(&patches, |_, _, _, _| false, 1e-4);
+        let found = side_contacts(&patches, |_, _| false, 1e-4);
         assert_eq!(found.len(), 1, "{found:?}");
         assert_eq!(found[0].patches, [0, 1]);
         assert!((found[0].gap - 1e-5).abs() < 1e-9, "{}", found[0].gap);
         assert_eq!(found[0].sides, [Edge::U1, Edge::U0]);
-        // The small side lies wholly along the big one; not the other way round.
-        assert_eq!(found[0].whole, [false, true]);
-        assert_eq!(covered_sides(&found), vec![(1, Edge::U0)]);
-        // Within a tolerance below the gap, no contact; welded sides are skipped.
-        assert!(side_contacts(&patches, |_, _, _, _| false, 1e-6).is_empty());
-        assert!(side_contacts(&patches, |_, _, _, _| true, 1e-4).is_empty());
-    }
-
-    #[test]
-    fn covered_sides_keep_one_line_of_each_edge() {
-        let side = [Edge::U1, Edge::U0, Edge::V0];
-        let c = |p: usize, q: usize, whole: [bool; 2]| SideContact {
-            patches: [p, q],
-            sides: [side[p], side[q]],
-            gap: 0.0,
-            whole,
-        };
-        // Three sides all measured along one another: a chain of covers must end at a side
-        // that is drawn. (0, 1): the second is covered; (0, 2): the first is covered by the
-        // third; (1, 2): the third would be covered by the second, which is covered itself.
-        let contacts = [
-            c(0, 1, [true, true]),
-            c(0, 2, [true, false]),
-            c(1, 2, [false, true]),
-        ];
-        let covered = covered_sides(&contacts);
-        assert_eq!(covered, vec![(1, Edge::U0), (0, Edge::U1)]);
-        // Nothing is covered where neither side lies wholly along the other.
-        assert!(covered_sides(&[c(0, 1, [false, false])]).is_empty());
+        // Within a tolerance below the gap, no contact; adjacent pairs are skipped.
+        assert!(side_contacts(&patches, |_, _| false, 1e-6).is_empty());
+        assert!(side_contacts(&patches, |_, _| true, 1e-4).is_empty());
     }
 
     #[test]
@@ -418,7 +337,7 @@ mod tests {
             ],
         )
         .unwrap();
-        let found = side_contacts(&[&a, &b], |_, _, _, _| false, 1e-4);
+        let found = side_contacts(&[&a, &b], |_, _| false, 1e-4);
         assert!(found.is_empty(), "{found:?}");
     }
 
@@ -432,7 +351,7 @@ mod tests {
             vec![p(1, 0, -1), p(1, 2, -1), p(1, 0, 1), p(1, 2, 1)],
         )
         .unwrap();
-        let found = side_contacts(&[&a, &b], |_, _, _, _| false, 1e-4);
+        let found = side_contacts(&[&a, &b], |_, _| false, 1e-4);
         assert!(found.is_empty(), "{found:?}");
     }
 }

@@ -273,14 +273,6 @@ impl PatchAdjacency {
         ca.iter().any(|x| cb.contains(x))
     }
 
-    /// Whether two patch sides are one welded edge.
-    pub fn same_edge(&self, a: (usize, Edge), b: (usize, Edge)) -> bool {
-        let is = |u: &SideUse, s: (usize, Edge)| u.patch == s.0 && u.edge == s.1;
-        self.edges
-            .iter()
-            .any(|users| users.iter().any(|u| is(u, a)) && users.iter().any(|u| is(u, b)))
-    }
-
     /// Matches corners and sides as `weld` says (see [`PatchTopology::of_patches`]).
     pub fn of_patches(patches: &[&RationalPatch], weld: WeldTolerance) -> PatchAdjacency {
         let mut welder = Welder {

@@ -394,21 +394,8 @@ pub fn layers(
         if missed {
             continue;
         }
-        // The contact rules: a point of another face within the contact distance of a point
-        // of a trimming curve, and a point of a patch in contact with a side within the side
-        // contact tolerance of a point of that side, is that point.
         let contact = match sample {
-            Sample::Trim { uv, .. } if j != own => {
-                contact_point(scene, own, uv).map(|p| (p, scene.trim_contact))
-            }
-            Sample::Exact { uv, .. }
-                if j != own
-                    && sides_through(uv)
-                        .iter()
-                        .any(|(e, _)| scene.contact_partners(own, *e).contains(&j)) =>
-            {
-                contact_point(scene, own, uv).map(|p| (p, scene.contact_tolerance))
-            }
+            Sample::Trim { uv, .. } if j != own => contact_point(scene, own, uv),
             _ => None,
         };
         let (front, back) = hits_on_ray(scene, &ps, j, &exclude, contact.as_ref(), opts, behind)?;
@@ -480,7 +467,7 @@ fn hits_on_ray(
     ps: &PointSystem,
     j: usize,
     exclude: &[DyadicBoxN],
-    contact: Option<&([Interval; 3], f64)>,
+    contact: Option<&[Interval; 3]>,
     opts: &RayOptions,
     want_behind: bool,
 ) -> Result<(usize, Result<Vec<Hit>, Reason>), Reason> {
@@ -540,19 +527,15 @@ fn ray_hits(
     j: usize,
     front_i: &Bernstein<Interval>,
     exclude: &[DyadicBoxN],
-    contact: Option<&([Interval; 3], f64)>,
+    contact: Option<&[Interval; 3]>,
 ) -> Result<(usize, Result<Vec<Hit>, Reason>), Reason> {
     let jim = &scene.images[j];
     // On a trimmed patch, only the points in its faces are surface (`proofs/hidden-lines.md`,
     // "Trimmed faces"); an unresolved box outside them holds none.
     let uv_of = |e: &[[f64; 2]]| Rect::from_axes(e[ps.nvars], e[ps.nvars + 1]);
-    // Nor does one whose points are all the sample's own by a contact rule (below).
-    let own_point = |b: &[[f64; 2]]| {
-        contact.is_some_and(|(p, d)| within(scene, j, &uv_of(b), p, *d) == Some(true))
-    };
     if r.unresolved
         .iter()
-        .any(|b| scene.membership(j, &uv_of(b)) != Membership::Outside && !own_point(b))
+        .any(|b| scene.membership(j, &uv_of(b)) != Membership::Outside)
     {
         return Err(Reason::RayIntersections { patch: j });
     }
@@ -561,10 +544,9 @@ fn ray_hits(
     for root in &r.roots {
         let uv = uv_of(&root.enclosure);
         // A point of another face within the contact distance of a sample on a trimming
-        // curve is the sample's own point (the faces meet there); so is a point of a patch
-        // in side contact near a sample on that side.
-        if let Some((p, d)) = contact {
-            match within(scene, j, &uv, p, *d) {
+        // curve is the sample's own point (the faces meet there).
+        if let Some(p) = contact {
+            match within(scene, j, &uv, p) {
                 Some(true) => continue,
                 Some(false) => {}
                 None => return Err(Reason::HitInFace { patch: j }),
@@ -620,8 +602,8 @@ fn ray_hits(
     Ok((count, behind))
 }
 
-/// The space point of a sample (on a trimming curve or a side in contact), for the contact
-/// rules: `None` where no enclosure is found.
+/// The space point of a sample on a trimming curve, for the contact rule: `None` when the
+/// scene has no faces (no rule).
 fn contact_point(scene: &Scene, own: usize, uv: &[Rational; 2]) -> Option<[Interval; 3]> {
     let patch = scene.surfaces.get(own)?;
     let r = |q: &Rational| [q.lower_f64(), q.upper_f64()];
@@ -629,14 +611,15 @@ fn contact_point(scene: &Scene, own: usize, uv: &[Rational; 2]) -> Option<[Inter
     patch.enclosure([a[0], b[0]], [a[1], b[1]])
 }
 
-/// Whether every point of patch `j` over `uv` lies within distance `d` of every point of
-/// the box `p` (`Some(true)`), none can (`Some(false)`: the nearest points are farther), or
-/// neither is proven (`None`).
-fn within(scene: &Scene, j: usize, uv: &Rect, p: &[Interval; 3], d: f64) -> Option<bool> {
+/// Whether every point of patch `j` over `uv` lies within the scene's contact distance of
+/// every point of the box `p` (`Some(true)`), none can (`Some(false)`: the nearest points
+/// are farther), or neither is proven (`None`).
+fn within(scene: &Scene, j: usize, uv: &Rect, p: &[Interval; 3]) -> Option<bool> {
     let q = scene.surfaces.get(j)?.enclosure(
         [uv.axis(0)[0], uv.axis(1)[0]],
         [uv.axis(0)[1], uv.axis(1)[1]],
     )?;
+    let d = scene.trim_contact;
     let (mut far, mut near) = (0.0f64, 0.0f64);
     for k in 0..3 {
         let diff = q[k].sub(&p[k]);

@@ -5,8 +5,7 @@ use crate::analysis::projection::{ImagePolys, Projection, ProjectionError};
 use crate::analysis::view::View;
 use crate::geometry::Rect;
 use crate::model::{
-    contact_assumption, covered_sides, model_contacts, Model, PatchAdjacency, SideContact,
-    WeldTolerance,
+    contact_assumption, model_contacts, Model, PatchAdjacency, SideContact, WeldTolerance,
 };
 use crate::number::{Number, Rational};
 use crate::solver::point_in_face::{
@@ -89,14 +88,12 @@ pub struct Scene {
     pub jacobians: Vec<[[Poly; 2]; 2]>,
     /// Which patch sides are the same edge.
     pub adjacency: PatchAdjacency,
-    /// Sides that run along another patch's side without being welded as one edge (measured, for a
+    /// Sides that run along another patch's side without a common corner (measured, for a
     /// model without trimmed faces), in the order of their pairs: those pairs are adjacent
     /// too ([`Scene::adjacent`]).
     pub contacts: Vec<SideContact>,
     /// The tolerance of that measurement.
     pub contact_tolerance: f64,
-    /// The sides of those contacts that another side draws ([`covered_sides`]).
-    pub covered: Vec<(usize, Edge)>,
     /// Per patch, the bounds of the cells of a [`LEAF_GRID`]² grid of its parameter square,
     /// made on first use ([`Scene::leaf_bounds`]).
     leaves: Vec<OnceLock<Vec<ImageBounds>>>,
@@ -105,7 +102,7 @@ pub struct Scene {
     /// How near another face a point of a trimming curve is taken to lie on it (model
     /// units; [`Scene::with_faces`]).
     pub trim_contact: f64,
-    /// The patches, for the space distances of that rule and of side contacts.
+    /// The patches, for the space distances of that rule (empty without faces).
     pub surfaces: Vec<RationalPatch>,
 }
 
@@ -151,7 +148,6 @@ impl Scene {
         let surfaces: Vec<_> = model.patches.iter().map(|p| &p.surface).collect();
         let adjacency = PatchAdjacency::of_patches(&surfaces, weld);
         let (contacts, contact_tolerance) = model_contacts(model, &adjacency, weld);
-        let covered = covered_sides(&contacts);
         let leaves = (0..images.len()).map(|_| OnceLock::new()).collect();
         Ok(Scene {
             projection,
@@ -161,11 +157,10 @@ impl Scene {
             adjacency,
             contacts,
             contact_tolerance,
-            covered,
             leaves,
             faces: Vec::new(),
             trim_contact: 0.0,
-            surfaces: model.patches.iter().map(|p| p.surface.clone()).collect(),
+            surfaces: Vec::new(),
         })
     }
 
@@ -174,6 +169,7 @@ impl Scene {
     /// point as any point of another face within `contact` of it.
     pub fn with_faces(mut self, model: &Model, contact: f64) -> Scene {
         self.trim_contact = contact;
+        self.surfaces = model.patches.iter().map(|p| p.surface.clone()).collect();
         self.faces = (0..model.patches.len())
             .map(|p| {
                 let on = FacesOnPatch::of(model, p)?;
@@ -210,27 +206,7 @@ impl Scene {
     /// The assumption that [`Scene::contacts`] adds to a report, if any.
     pub fn contact_assumption(&self) -> Option<String> {
         (!self.contacts.is_empty())
-            .then(|| contact_assumption(&self.contacts, self.contact_tolerance, self.covered.len()))
-    }
-
-    /// The patches in contact with side `edge` of patch `own` ([`Scene::contacts`]) where
-    /// either side lies wholly along the other: a point of such a patch within
-    /// [`Scene::contact_tolerance`] of a point of the side is that point.
-    pub fn contact_partners(&self, own: usize, edge: Edge) -> Vec<usize> {
-        self.contacts
-            .iter()
-            .filter(|c| c.whole.iter().any(|w| *w))
-            .filter_map(|c| {
-                let k = (0..2).find(|&k| c.patches[k] == own && c.sides[k] == edge)?;
-                Some(c.patches[1 - k])
-            })
-            .collect()
-    }
-
-    /// Whether side `edge` of patch `own` is drawn by another side it lies along
-    /// ([`Scene::covered`]).
-    pub fn is_covered(&self, own: usize, edge: Edge) -> bool {
-        self.covered.contains(&(own, edge))
+            .then(|| contact_assumption(&self.contacts, self.contact_tolerance))
     }
 
     /// Whether patch `j` is restricted to trimmed faces.

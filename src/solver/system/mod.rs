@@ -856,16 +856,6 @@ pub(crate) fn isolate<S: SquareSystem>(
             .iter()
             .any(|e| e.iter().zip(b).all(|(x, y)| x.0 <= y.0 && y.1 <= x.1))
     };
-    // Whether an enclosure, clipped to the domain (a root outside it is not wanted either),
-    // lies in an excluded box.
-    let in_excluded_f64 = |enc: &[[f64; 2]]| {
-        let clipped: Vec<[f64; 2]> = enc
-            .iter()
-            .enumerate()
-            .map(|(i, e)| [e[0].max(dlo[i]), e[1].min(dhi[i])])
-            .collect();
-        excluded_f64.iter().any(|e| within(&clipped, e))
-    };
     let n = domain.len();
     while let Some((bx, depth, local)) = stack.pop() {
         out.boxes += 1;
@@ -901,7 +891,13 @@ pub(crate) fn isolate<S: SquareSystem>(
                     .roots
                     .iter()
                     .any(|r| within(&enc, &r.unique_in) || within(&r.enclosure, &unique_in));
-                let trivial = in_excluded_f64(&enc);
+                // Clipped to the domain: a root outside it is not wanted either.
+                let clipped: Vec<[f64; 2]> = enc
+                    .iter()
+                    .enumerate()
+                    .map(|(i, e)| [e[0].max(dlo[i]), e[1].min(dhi[i])])
+                    .collect();
+                let trivial = excluded_f64.iter().any(|e| within(&clipped, e));
                 if !seen && !trivial {
                     let mut tight = Tight {
                         sys,
@@ -915,11 +911,6 @@ pub(crate) fn isolate<S: SquareSystem>(
                         .enumerate()
                         .any(|(i, e)| e[1] < dlo[i] || e[0] > dhi[i])
                     {
-                        continue;
-                    }
-                    // Refined, a root whose first enclosure reached past an excluded box
-                    // may be proven inside it.
-                    if in_excluded_f64(&enc) {
                         continue;
                     }
                     // Refined, the same zero found from another box is recognised as above;

@@ -341,7 +341,7 @@ fn boundary_segments(scene: &Scene, policy: &Policy) -> Vec<Segment> {
                 uv: side_uv(&on, [1.0, 1.0]),
             },
         ];
-        let mut seg = exact_curve(
+        out.push(exact_curve(
             LineKind::Boundary,
             first.patch,
             Some(first.edge),
@@ -351,13 +351,7 @@ fn boundary_segments(scene: &Scene, policy: &Policy) -> Vec<Segment> {
             on,
             None,
             policy,
-        );
-        // A side wholly along another side in contact is that side's line
-        // (`proofs/hidden-lines.md`, assumption (3)).
-        if users.iter().any(|u| scene.is_covered(u.patch, u.edge)) {
-            seg.elsewhere.push([0.0, 1.0]);
-        }
-        out.push(seg);
+        ));
     }
     out
 }
